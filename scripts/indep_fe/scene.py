@@ -1,0 +1,265 @@
+"""Scene YAML (SI units) -> plain dataclasses, with validation."""
+from __future__ import annotations
+
+import math
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import yaml
+
+
+class SceneError(ValueError):
+    pass
+
+
+@dataclass
+class Plate:
+    length: float
+    width: float
+    thickness: float
+
+
+@dataclass
+class Plasticity:
+    yield_stress: float
+    linear_tangent: float | None = None      # E_t (Pa), linear hardening
+    table: list[tuple[float, float]] | None = None  # [(k_i, sigma_i)], piecewise linear in k
+
+
+@dataclass
+class Material:
+    density: float
+    youngs_modulus: float
+    poisson_ratio: float
+    plasticity: Plasticity | None = None
+
+
+@dataclass
+class MeshSpec:
+    nx: int
+    ny: int
+    element: str          # q4-full | q4-sri | q4-1pt
+    model: str            # half | full
+    grading: float = 1.0
+    hourglass: float = 0.05
+
+
+@dataclass
+class ContactLaw:
+    kind: str             # paper | johnson
+    length_unit: float | None = None
+    datum_depth: float | None = None
+
+
+@dataclass
+class Impactor:
+    mass: float
+    velocity: float
+    nose_radius: float
+    youngs_modulus: float
+    poisson_ratio: float
+    contact_law: ContactLaw
+    indentation_datum: str = "mid-plane"
+    force_node: str | None = None     # defaults to the datum
+
+
+@dataclass
+class Pulse:
+    force: float
+    duration: float
+
+
+@dataclass
+class TimeSpec:
+    end: float | None = None              # fixed end time
+    after_contact: float | None = None    # or: stop this long after contact ended
+    limit: float = 0.05                   # hard stop
+    cfl: float | None = None
+    fixed_dt: float | None = None
+    allow_unstable_dt: bool = False
+
+
+@dataclass
+class Probe:
+    name: str
+    x: float
+    y: float
+
+
+@dataclass
+class Output:
+    every: float
+    probes: list[Probe] = field(default_factory=list)
+
+
+@dataclass
+class Scene:
+    plate: Plate
+    material: Material
+    mesh: MeshSpec
+    impactor: Impactor | None
+    pulse: Pulse | None
+    time: TimeSpec
+    output: Output
+
+
+def _warn_unknown(d: dict, known: set[str], where: str) -> None:
+    for key in d:
+        if key not in known:
+            print(f"indep_fe: warning: unknown key '{where}.{key}' ignored", file=sys.stderr)
+
+
+def _req(d: dict, key: str, where: str):
+    if not isinstance(d, dict) or key not in d:
+        raise SceneError(f"missing '{where}.{key}'")
+    return d[key]
+
+
+def _pos(value, where: str, allow_zero: bool = False) -> float:
+    v = float(value)
+    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
+        raise SceneError(f"'{where}' must be {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+    return v
+
+
+def _one_of(d, where: str) -> tuple[str, object]:
+    if not isinstance(d, dict) or len(d) != 1:
+        raise SceneError(f"'{where}' must be a mapping with exactly one key, got {d!r}")
+    (k, v), = d.items()
+    return k, v
+
+
+def parse_scene(data: dict) -> Scene:
+    if not isinstance(data, dict):
+        raise SceneError("scene must be a YAML mapping")
+    _warn_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "name",
+                         "description"}, "scene")
+
+    p = _req(data, "plate", "scene")
+    plate = Plate(_pos(_req(p, "length", "plate"), "plate.length"),
+                  _pos(_req(p, "width", "plate"), "plate.width"),
+                  _pos(_req(p, "thickness", "plate"), "plate.thickness"))
+
+    m = _req(data, "material", "scene")
+    _warn_unknown(m, {"density", "youngs_modulus", "poisson_ratio", "plasticity"}, "material")
+    nu = float(_req(m, "poisson_ratio", "material"))
+    if not (-1.0 < nu < 0.5):
+        raise SceneError(f"material.poisson_ratio must be in (-1, 0.5), got {nu}")
+    E = _pos(_req(m, "youngs_modulus", "material"), "material.youngs_modulus")
+    plast = None
+    if m.get("plasticity") is not None:
+        pl = m["plasticity"]
+        _warn_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
+        sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
+        plast = Plasticity(yield_stress=sy0)
+        hard = pl.get("hardening", {"linear": 0.0})
+        kind, val = _one_of(hard, "material.plasticity.hardening")
+        if kind == "linear":
+            et = _pos(val, "material.plasticity.hardening.linear", allow_zero=True)
+            if et >= E:
+                raise SceneError("hardening.linear (tangent modulus E_t) must be < youngs_modulus")
+            plast.linear_tangent = et
+        elif kind == "table":
+            rows = [(float(a), float(b)) for a, b in val]
+            if not rows:
+                raise SceneError("hardening.table is empty")
+            if rows[0][0] != 0.0:
+                rows.insert(0, (0.0, sy0))
+            if rows[0][1] != sy0:
+                raise SceneError("hardening.table must start at (0, yield_stress)")
+            ks = [r[0] for r in rows]
+            if any(b <= a for a, b in zip(ks, ks[1:])):
+                raise SceneError("hardening.table: plastic strains must increase strictly")
+            if any(r[1] <= 0 for r in rows):
+                raise SceneError("hardening.table: stresses must be > 0")
+            plast.table = rows
+        else:
+            raise SceneError(f"unknown hardening '{kind}' (linear | table)")
+    material = Material(_pos(_req(m, "density", "material"), "material.density"), E, nu, plast)
+
+    me = _req(data, "mesh", "scene")
+    _warn_unknown(me, {"nx", "ny", "element", "model", "grading", "hourglass"}, "mesh")
+    mesh = MeshSpec(int(_req(me, "nx", "mesh")), int(_req(me, "ny", "mesh")),
+                    str(me.get("element", "q4-sri")), str(me.get("model", "half")),
+                    float(me.get("grading", 1.0)), float(me.get("hourglass", 0.05)))
+    if mesh.element not in ("q4-full", "q4-sri", "q4-1pt"):
+        raise SceneError(f"mesh.element must be q4-full | q4-sri | q4-1pt, got {mesh.element}")
+    if mesh.model not in ("half", "full"):
+        raise SceneError(f"mesh.model must be half | full, got {mesh.model}")
+    if mesh.nx < 1 or mesh.ny < 2 or mesh.ny % 2:
+        raise SceneError("mesh.nx must be >= 1 and mesh.ny even and >= 2")
+    if mesh.model == "full" and mesh.nx % 2:
+        raise SceneError("mesh.nx must be even for the full model (mid-span node row)")
+    if mesh.grading < 1.0:
+        raise SceneError("mesh.grading (largest/smallest element length) must be >= 1")
+    if mesh.hourglass < 0:
+        raise SceneError("mesh.hourglass must be >= 0")
+
+    load = _req(data, "load", "scene")
+    impactor = pulse = None
+    if ("impactor" in load) == ("pulse" in load):
+        raise SceneError("load must have exactly one of 'impactor' or 'pulse'")
+    if "impactor" in load:
+        im = load["impactor"]
+        _warn_unknown(im, {"mass", "velocity", "nose_radius", "youngs_modulus", "poisson_ratio",
+                           "contact_law", "indentation_datum", "force_node"}, "load.impactor")
+        kind, val = _one_of(_req(im, "contact_law", "load.impactor"), "load.impactor.contact_law")
+        if kind == "paper":
+            law = ContactLaw("paper", length_unit=_pos(_req(val, "length_unit", "contact_law.paper"),
+                                                       "contact_law.paper.length_unit"))
+        elif kind == "johnson":
+            law = ContactLaw("johnson", datum_depth=_pos(_req(val, "datum_depth", "contact_law.johnson"),
+                                                         "contact_law.johnson.datum_depth"))
+        else:
+            raise SceneError(f"unknown contact_law '{kind}' (paper | johnson)")
+        datum = str(im.get("indentation_datum", "mid-plane"))
+        fnode = im.get("force_node")
+        for name, v in (("indentation_datum", datum), ("force_node", fnode)):
+            if v is not None and v not in ("mid-plane", "top-surface"):
+                raise SceneError(f"load.impactor.{name} must be mid-plane | top-surface, got {v}")
+        isnu = float(_req(im, "poisson_ratio", "load.impactor"))
+        impactor = Impactor(_pos(_req(im, "mass", "load.impactor"), "load.impactor.mass"),
+                            float(_req(im, "velocity", "load.impactor")),
+                            _pos(_req(im, "nose_radius", "load.impactor"), "load.impactor.nose_radius"),
+                            _pos(_req(im, "youngs_modulus", "load.impactor"), "load.impactor.youngs_modulus"),
+                            isnu, law, datum, fnode if fnode is not None else datum)
+    else:
+        pu = load["pulse"]
+        _warn_unknown(pu, {"force", "duration"}, "load.pulse")
+        pulse = Pulse(float(_req(pu, "force", "load.pulse")),
+                      _pos(_req(pu, "duration", "load.pulse"), "load.pulse.duration"))
+
+    t = _req(data, "time", "scene")
+    _warn_unknown(t, {"end", "dt", "limit", "allow_unstable_dt"}, "time")
+    ts = TimeSpec(limit=_pos(t.get("limit", 0.05), "time.limit"),
+                  allow_unstable_dt=bool(t.get("allow_unstable_dt", False)))
+    end = _req(t, "end", "time")
+    if isinstance(end, dict):
+        kind, val = _one_of(end, "time.end")
+        if kind != "after_contact":
+            raise SceneError("time.end must be a number or {after_contact: T}")
+        ts.after_contact = _pos(val, "time.end.after_contact", allow_zero=True)
+    else:
+        ts.end = _pos(end, "time.end")
+    kind, val = _one_of(_req(t, "dt", "time"), "time.dt")
+    if kind == "cfl":
+        ts.cfl = _pos(val, "time.dt.cfl")
+    elif kind == "fixed":
+        ts.fixed_dt = _pos(val, "time.dt.fixed")
+    else:
+        raise SceneError("time.dt must be {cfl: c} or {fixed: dt}")
+
+    o = _req(data, "output", "scene")
+    _warn_unknown(o, {"every", "probes", "fields"}, "output")
+    probes = [Probe(str(name), float(_req(pr, "x", f"output.probes.{name}")),
+                    float(_req(pr, "y", f"output.probes.{name}")))
+              for name, pr in (o.get("probes") or {}).items()]
+    output = Output(_pos(_req(o, "every", "output"), "output.every"), probes)
+
+    return Scene(plate, material, mesh, impactor, pulse, ts, output)
+
+
+def load_scene(path: str | Path) -> Scene:
+    with open(path) as fh:
+        return parse_scene(yaml.safe_load(fh))

@@ -1,0 +1,33 @@
+"""Small scenes for the tests (plain dicts, parsed like a YAML file)."""
+import copy
+
+from indep_fe.scene import parse_scene
+
+BASE = {
+    "plate": {"length": 0.200, "width": 0.200, "thickness": 0.020},
+    "material": {"density": 7850.0, "youngs_modulus": 207.0e9, "poisson_ratio": 0.3},
+    "mesh": {"nx": 10, "ny": 4, "element": "q4-sri", "model": "half"},
+    "load": {"impactor": {"mass": 18.0, "velocity": 10.0, "nose_radius": 0.010,
+                          "youngs_modulus": 207.0e9, "poisson_ratio": 0.3,
+                          "contact_law": {"paper": {"length_unit": 1.0}},
+                          "indentation_datum": "mid-plane"}},
+    "time": {"end": 3.0e-4, "dt": {"cfl": 0.8}},
+    "output": {"every": 1.0e-5, "probes": {"A": {"x": 0.100, "y": 0.0}}},
+}
+
+PLASTIC = {"yield_stress": 250.0e6, "hardening": {"linear": 1.5e9}}
+
+
+def scene(**over):
+    """BASE with dotted-path overrides, e.g. scene(**{"mesh.element": "q4-1pt"})."""
+    d = copy.deepcopy(BASE)
+    for path, value in over.items():
+        keys = path.split(".")
+        node = d
+        for k in keys[:-1]:
+            node = node.setdefault(k, {})
+        if value is None:
+            node.pop(keys[-1], None)
+        else:
+            node[keys[-1]] = copy.deepcopy(value)
+    return parse_scene(d)

@@ -1,0 +1,89 @@
+//! Errors: bad input (with file, line, column, field, value and what is allowed) and run-time
+//! failures (instability, the contact law's maximum), never panics.
+
+use std::path::PathBuf;
+
+/// Where a value sits in a scene file (1-based line and column; 0 when unknown).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SourceLocation {
+    pub file: PathBuf,
+    pub line: u64,
+    pub column: u64,
+}
+
+impl std::fmt::Display for SourceLocation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}", self.file.display())
+        } else {
+            write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
+        }
+    }
+}
+
+/// A scene value that parses but is not allowed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InvalidValue {
+    pub location: SourceLocation,
+    /// Dotted path of the field, e.g. `material.poisson_ratio`.
+    pub field: String,
+    /// The value as given.
+    pub value: String,
+    /// What is allowed, in words, with the unit.
+    pub allowed: String,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    #[error("{path}: cannot read the scene: {source}")]
+    ReadScene {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    /// The YAML does not parse into a scene (syntax, unknown key, wrong type, missing field,
+    /// duplicate key); the message of the YAML parser names the place.
+    #[error("{location}: {message}")]
+    ParseScene {
+        location: SourceLocation,
+        message: String,
+    },
+    #[error("{}: {} = {}: {}", .0.location, .0.field, .0.value, .0.allowed)]
+    InvalidScene(Box<InvalidValue>),
+    /// The run cannot go on (instability, contact law beyond its maximum, ...).
+    #[error("run stopped at step {step} (t = {time_s:.6e} s): {what}")]
+    Run {
+        step: u64,
+        time_s: f64,
+        what: String,
+    },
+    #[error("{path}: cannot write output: {source}")]
+    WriteOutput {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    pub fn invalid(
+        location: SourceLocation,
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::InvalidScene(Box::new(InvalidValue {
+            location,
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }))
+    }
+
+    pub fn write(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::WriteOutput {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,344 @@
+//! Materials in plane strain (small strain): linear elastic, and von Mises plasticity with
+//! isotropic hardening integrated by radial return (backward Euler), eq. (16).
+//!
+//! Strains are `[xx, yy, zz, gamma_xy]` (engineering shear; `zz` is 0 except in the B-bar
+//! modified strain), stresses `[xx, yy, zz, xy]`, in Pa.
+
+use crate::scene::{Hardening, Material as MaterialSpec};
+
+pub type Strain = [f64; 4];
+pub type Stress = [f64; 4];
+
+/// What a material returns at one integration point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointResponse {
+    pub stress: Stress,
+    /// Elastic strain energy density, J/m^3.
+    pub strain_energy_density: f64,
+    /// Plastic work density dissipated in this update, J/m^3.
+    pub plastic_work_density: f64,
+}
+
+/// A constitutive model with its per-point state. Elastic models have a zero-sized state, so
+/// an elastic run allocates no plasticity state at all.
+pub trait ConstitutiveModel: Sync {
+    type State: Copy + Default + Send + Sync + std::fmt::Debug;
+    /// Stress for the total strain, updating the state (called once per point per step).
+    fn update(&self, strain: &Strain, state: &mut Self::State) -> PointResponse;
+    /// Stress for the total strain and a converged state, without changing it.
+    fn stress(&self, strain: &Strain, state: &Self::State) -> Stress;
+    /// Equivalent plastic strain of a state.
+    fn equivalent_plastic_strain(&self, state: &Self::State) -> f64;
+    fn elastic(&self) -> &Elastic;
+}
+
+/// Isotropic linear elasticity (Lame constants in Pa).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Elastic {
+    pub lambda: f64,
+    pub mu: f64,
+}
+
+impl Elastic {
+    pub fn new(youngs_modulus: f64, poisson_ratio: f64) -> Elastic {
+        let (e, nu) = (youngs_modulus, poisson_ratio);
+        Elastic {
+            lambda: e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            mu: e / (2.0 * (1.0 + nu)),
+        }
+    }
+
+    /// P-wave (constrained) modulus lambda + 2 mu, Pa.
+    pub fn p_modulus(&self) -> f64 {
+        self.lambda + 2.0 * self.mu
+    }
+
+    #[inline(always)]
+    pub fn stress_of(&self, e: &Strain) -> Stress {
+        let lt = self.lambda * (e[0] + e[1] + e[2]);
+        let m2 = 2.0 * self.mu;
+        [lt + m2 * e[0], lt + m2 * e[1], lt + m2 * e[2], self.mu * e[3]]
+    }
+}
+
+/// `s : e / 2` with engineering shear strain.
+#[inline(always)]
+pub fn half_contraction(s: &Stress, e: &Strain) -> f64 {
+    0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3])
+}
+
+impl ConstitutiveModel for Elastic {
+    type State = ();
+    #[inline(always)]
+    fn update(&self, strain: &Strain, _: &mut ()) -> PointResponse {
+        let stress = self.stress_of(strain);
+        PointResponse {
+            stress,
+            strain_energy_density: half_contraction(&stress, strain),
+            plastic_work_density: 0.0,
+        }
+    }
+    fn stress(&self, strain: &Strain, _: &()) -> Stress {
+        self.stress_of(strain)
+    }
+    fn equivalent_plastic_strain(&self, _: &()) -> f64 {
+        0.0
+    }
+    fn elastic(&self) -> &Elastic {
+        self
+    }
+}
+
+/// Von Mises equivalent stress, Pa.
+pub fn von_mises(s: &Stress) -> f64 {
+    let (a, b, c) = (s[0] - s[1], s[1] - s[2], s[2] - s[0]);
+    (0.5 * (a * a + b * b + c * c) + 3.0 * s[3] * s[3]).sqrt()
+}
+
+/// Flow stress against equivalent plastic strain: piecewise linear (one piece for linear
+/// hardening), held constant beyond the last tabulated point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlowCurve {
+    /// Breakpoints (equivalent plastic strain, flow stress Pa), the first at (0, yield).
+    points: Vec<(f64, f64)>,
+    /// Slope after the last point, Pa (the plastic modulus H for linear hardening).
+    tail_slope: f64,
+}
+
+impl FlowCurve {
+    pub fn new(yield_stress: f64, hardening: &Hardening, youngs_modulus: f64) -> FlowCurve {
+        match hardening {
+            Hardening::Linear { tangent_modulus } => FlowCurve {
+                points: vec![(0.0, yield_stress)],
+                // Uniaxial tangent E_t -> plastic modulus H = E E_t / (E - E_t).
+                tail_slope: youngs_modulus * tangent_modulus / (youngs_modulus - tangent_modulus),
+            },
+            Hardening::Table(points) => FlowCurve {
+                points: points.clone(),
+                tail_slope: 0.0,
+            },
+        }
+    }
+
+    /// (flow stress Pa, slope Pa to the right of `k`, next breakpoint after `k` if any).
+    #[inline]
+    fn piece(&self, k: f64) -> (f64, f64, Option<f64>) {
+        let p = &self.points;
+        // Index of the last breakpoint at or before k.
+        let i = p.partition_point(|&(kk, _)| kk <= k).saturating_sub(1);
+        if i + 1 < p.len() {
+            let (k0, s0) = p[i];
+            let (k1, s1) = p[i + 1];
+            let slope = (s1 - s0) / (k1 - k0);
+            (s0 + slope * (k - k0), slope, Some(k1))
+        } else {
+            let (k0, s0) = p[i];
+            (s0 + self.tail_slope * (k - k0), self.tail_slope, None)
+        }
+    }
+
+    /// Flow stress at equivalent plastic strain `k`, Pa.
+    pub fn flow_stress(&self, k: f64) -> f64 {
+        self.piece(k).0
+    }
+}
+
+/// Per-point state of the plastic model.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PlasticState {
+    /// Plastic strain tensor `[xx, yy, zz, xy]` (tensor shear).
+    pub plastic_strain: [f64; 4],
+    /// Equivalent plastic strain.
+    pub eqps: f64,
+}
+
+/// Von Mises plasticity with isotropic hardening.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VonMises {
+    pub elastic: Elastic,
+    pub flow: FlowCurve,
+}
+
+impl VonMises {
+    fn elastic_strain(strain: &Strain, state: &PlasticState) -> Strain {
+        let p = &state.plastic_strain;
+        [
+            strain[0] - p[0],
+            strain[1] - p[1],
+            strain[2] - p[2],
+            strain[3] - 2.0 * p[3],
+        ]
+    }
+
+    /// Solves `q - 3 mu dk - sigma_y(k + dk) = 0` piece by piece of the flow curve.
+    fn plastic_increment(&self, q: f64, k: f64) -> f64 {
+        let three_mu = 3.0 * self.elastic.mu;
+        let mut dk = 0.0;
+        loop {
+            let (sy, h, next) = self.flow.piece(k + dk);
+            let x = (q - three_mu * dk - sy) / (three_mu + h);
+            match next {
+                Some(b) if k + dk + x > b => dk = b - k,
+                _ => return dk + x,
+            }
+        }
+    }
+}
+
+impl ConstitutiveModel for VonMises {
+    type State = PlasticState;
+
+    #[inline]
+    fn update(&self, strain: &Strain, state: &mut PlasticState) -> PointResponse {
+        let mut ee = Self::elastic_strain(strain, state);
+        let mut s = self.elastic.stress_of(&ee);
+        let mean = (s[0] + s[1] + s[2]) / 3.0;
+        let dev = [s[0] - mean, s[1] - mean, s[2] - mean, s[3]];
+        let q = (1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])
+            + 3.0 * dev[3] * dev[3])
+            .sqrt();
+        let k_old = state.eqps;
+        let sy_old = self.flow.flow_stress(k_old);
+        let mut plastic_work_density = 0.0;
+        if q > sy_old {
+            let dk = self.plastic_increment(q, k_old);
+            // Flow direction 3/2 dev/q; plastic strain increment dk * that (tensor shear).
+            let r = 1.5 * dk / q;
+            let dp = [r * dev[0], r * dev[1], r * dev[2], r * dev[3]];
+            for (p, d) in state.plastic_strain.iter_mut().zip(dp) {
+                *p += d;
+            }
+            state.eqps = k_old + dk;
+            let m2 = 2.0 * self.elastic.mu;
+            s = [
+                s[0] - m2 * dp[0],
+                s[1] - m2 * dp[1],
+                s[2] - m2 * dp[2],
+                s[3] - m2 * dp[3],
+            ];
+            ee = Self::elastic_strain(strain, state);
+            plastic_work_density = 0.5 * (sy_old + self.flow.flow_stress(state.eqps)) * dk;
+        }
+        PointResponse {
+            stress: s,
+            strain_energy_density: half_contraction(&s, &ee),
+            plastic_work_density,
+        }
+    }
+
+    fn stress(&self, strain: &Strain, state: &PlasticState) -> Stress {
+        self.elastic.stress_of(&Self::elastic_strain(strain, state))
+    }
+
+    fn equivalent_plastic_strain(&self, state: &PlasticState) -> f64 {
+        state.eqps
+    }
+
+    fn elastic(&self) -> &Elastic {
+        &self.elastic
+    }
+}
+
+impl VonMises {
+    pub fn new(spec: &MaterialSpec) -> Option<VonMises> {
+        let p = spec.plasticity.as_ref()?;
+        Some(VonMises {
+            elastic: Elastic::new(spec.youngs_modulus, spec.poisson_ratio),
+            flow: FlowCurve::new(p.yield_stress, &p.hardening, spec.youngs_modulus),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Radial return against closed forms: uniaxial strain (plane strain, eps_xx only)
+    //! loading with linear hardening, and the tabulated curve.
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn steel(hardening: Hardening) -> VonMises {
+        VonMises::new(&MaterialSpec {
+            density: 7850.0,
+            youngs_modulus: 200e9,
+            poisson_ratio: 0.3,
+            plasticity: Some(crate::scene::Plasticity {
+                yield_stress: 250e6,
+                hardening,
+            }),
+        })
+        .unwrap()
+    }
+
+    /// Uniaxial strain eps_xx = e (all other strains 0). Closed form: elastic until
+    /// e_y = sigma_y / (2 mu); after that, with plastic modulus H, the axial stress is
+    /// sigma_xx = K e + (4/3) [mu e_y + mu H/(3 mu + H) (e - e_y)] ... derived below.
+    #[test]
+    fn radial_return_matches_the_uniaxial_strain_closed_form() {
+        let et = 2.0e9;
+        let m = steel(Hardening::Linear { tangent_modulus: et });
+        let (lam, mu) = (m.elastic.lambda, m.elastic.mu);
+        let bulk = lam + 2.0 * mu / 3.0;
+        let h = 200e9 * et / (200e9 - et);
+        let sy = 250e6;
+        // Deviatoric axial part s_xx = (2/3) q with q the von Mises stress; elastically
+        // q = 2 mu e. Yield at e_y = sy / (2 mu). After yield, d q = 2 mu * 3 mu H / ... :
+        // q = sy + H k and 2 mu (e - e_y) = (q - sy) + 3 mu k  =>  k = 2 mu (e - e_y) / (3 mu + H)
+        let e_y = sy / (2.0 * mu);
+        let mut state = PlasticState::default();
+        let steps = 400;
+        let e_max = 10.0 * e_y;
+        for i in 1..=steps {
+            let e = e_max * i as f64 / steps as f64;
+            let r = m.update(&[e, 0.0, 0.0, 0.0], &mut state);
+            let (q, k) = if e <= e_y {
+                (2.0 * mu * e, 0.0)
+            } else {
+                let k = 2.0 * mu * (e - e_y) / (3.0 * mu + h);
+                (sy + h * k, k)
+            };
+            let sxx = bulk * e + 2.0 / 3.0 * q;
+            let syy = bulk * e - q / 3.0;
+            assert_relative_eq!(r.stress[0], sxx, max_relative = 1e-12);
+            assert_relative_eq!(r.stress[1], syy, max_relative = 1e-12);
+            assert_relative_eq!(r.stress[2], syy, max_relative = 1e-12);
+            assert_relative_eq!(state.eqps, k, epsilon = 1e-15);
+            assert_relative_eq!(von_mises(&r.stress), q, max_relative = 1e-12);
+        }
+    }
+
+    #[test]
+    fn tabulated_curve_is_followed_across_breakpoints_and_held_beyond_the_last() {
+        let m = steel(Hardening::Table(vec![
+            (0.0, 250e6),
+            (0.01, 300e6),
+            (0.02, 310e6),
+        ]));
+        let mu = m.elastic.mu;
+        let mut state = PlasticState::default();
+        // One big step far beyond the table: the return must end on the flat tail.
+        let e = 0.1;
+        let r = m.update(&[e, 0.0, 0.0, 0.0], &mut state);
+        assert_relative_eq!(von_mises(&r.stress), 310e6, max_relative = 1e-12);
+        // Consistency: 2 mu e = q + 3 mu k (uniaxial strain, deviatoric part).
+        assert_relative_eq!(2.0 * mu * e, 310e6 + 3.0 * mu * state.eqps, max_relative = 1e-12);
+        // Inside the first segment.
+        let mut s2 = PlasticState::default();
+        let e2 = 250e6 / (2.0 * mu) + 0.004;
+        let r2 = m.update(&[e2, 0.0, 0.0, 0.0], &mut s2);
+        let h = 5e9;
+        let k = 2.0 * mu * 0.004 / (3.0 * mu + h);
+        assert_relative_eq!(s2.eqps, k, max_relative = 1e-12);
+        assert_relative_eq!(von_mises(&r2.stress), 250e6 + h * k, max_relative = 1e-12);
+    }
+
+    #[test]
+    fn elastic_unloading_after_yield_keeps_the_plastic_strain() {
+        let m = steel(Hardening::Linear { tangent_modulus: 1e9 });
+        let mut state = PlasticState::default();
+        m.update(&[0.01, 0.0, 0.0, 0.0], &mut state);
+        let k = state.eqps;
+        let r = m.update(&[0.0099, 0.0, 0.0, 0.0], &mut state);
+        assert_eq!(state.eqps, k);
+        assert_eq!(r.plastic_work_density, 0.0);
+    }
+}

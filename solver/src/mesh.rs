@@ -1,0 +1,217 @@
+//! Structured quadrilateral mesh of the plate (half or full), its boundary conditions, the
+//! mid-span nodes and the lookup of probe points.
+
+use crate::scene::{MeshSettings, MidSpanNode, Model, Plate};
+
+/// Nodes and 4-node elements (counter-clockwise). Coordinates in m.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    pub coords: Vec<[f64; 2]>,
+    pub elements: Vec<[u32; 4]>,
+}
+
+impl Mesh {
+    pub fn n_nodes(&self) -> usize {
+        self.coords.len()
+    }
+
+    pub fn element_coords(&self, e: usize) -> [[f64; 2]; 4] {
+        self.elements[e].map(|n| self.coords[n as usize])
+    }
+}
+
+/// The mesh of the plate with what the solver needs to know about it.
+#[derive(Debug, Clone)]
+pub struct PlateMesh {
+    pub mesh: Mesh,
+    pub nx: usize,
+    pub ny: usize,
+    /// `true` for each constrained degree of freedom (2 per node: x, y).
+    pub fixed_dofs: Vec<bool>,
+    /// Mid-span nodes at the top surface, the mid-plane and the bottom surface.
+    pub top: usize,
+    pub mid: usize,
+    pub bottom: usize,
+    /// 2 for the half model (everything reported is for the whole plate), 1 for the full.
+    pub symmetry_factor: f64,
+    pub model: Model,
+    pub length: f64,
+}
+
+impl PlateMesh {
+    pub fn new(plate: &Plate, settings: &MeshSettings) -> PlateMesh {
+        let (nx, ny) = (settings.nx, settings.ny);
+        let xs = x_stations(plate.length, nx, settings.grading, settings.model);
+        let ys: Vec<f64> = (0..=ny)
+            .map(|j| plate.thickness * j as f64 / ny as f64)
+            .collect();
+        let node = |i: usize, j: usize| i + j * (nx + 1);
+        let mut coords = Vec::with_capacity((nx + 1) * (ny + 1));
+        for &y in &ys {
+            for &x in &xs {
+                coords.push([x, y]);
+            }
+        }
+        let mut elements = Vec::with_capacity(nx * ny);
+        for j in 0..ny {
+            for i in 0..nx {
+                elements.push(
+                    [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)]
+                        .map(|n| n as u32),
+                );
+            }
+        }
+        let mut fixed_dofs = vec![false; 2 * coords.len()];
+        for j in 0..=ny {
+            let clamp = |dofs: &mut Vec<bool>, n: usize| {
+                dofs[2 * n] = true;
+                dofs[2 * n + 1] = true;
+            };
+            clamp(&mut fixed_dofs, node(0, j));
+            match settings.model {
+                Model::Half => fixed_dofs[2 * node(nx, j)] = true,
+                Model::Full => clamp(&mut fixed_dofs, node(nx, j)),
+            }
+        }
+        let i_mid = match settings.model {
+            Model::Half => nx,
+            Model::Full => nx / 2,
+        };
+        PlateMesh {
+            mesh: Mesh { coords, elements },
+            nx,
+            ny,
+            fixed_dofs,
+            top: node(i_mid, ny),
+            mid: node(i_mid, ny / 2),
+            bottom: node(i_mid, 0),
+            symmetry_factor: match settings.model {
+                Model::Half => 2.0,
+                Model::Full => 1.0,
+            },
+            model: settings.model,
+            length: plate.length,
+        }
+    }
+
+    pub fn mid_span_node(&self, which: MidSpanNode) -> usize {
+        match which {
+            MidSpanNode::MidPlane => self.mid,
+            MidSpanNode::TopSurface => self.top,
+        }
+    }
+
+    /// The point in the modelled part: in the half model, `x > L/2` is mirrored to `L - x`.
+    pub fn fold(&self, point: [f64; 2]) -> [f64; 2] {
+        match self.model {
+            Model::Half if point[0] > 0.5 * self.length => [self.length - point[0], point[1]],
+            _ => point,
+        }
+    }
+
+    /// The first (lowest index) element whose bounding box contains the point.
+    pub fn element_containing(&self, point: [f64; 2]) -> Option<usize> {
+        let tol = 1e-12 * self.length;
+        (0..self.mesh.elements.len()).find(|&e| {
+            let c = self.mesh.element_coords(e);
+            let (lo, hi) = c.iter().fold(
+                ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+                |(lo, hi), p| {
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1])],
+                        [hi[0].max(p[0]), hi[1].max(p[1])],
+                    )
+                },
+            );
+            (0..2).all(|k| point[k] >= lo[k] - tol && point[k] <= hi[k] + tol)
+        })
+    }
+}
+
+/// Node x-coordinates (m) from the clamped end: uniform, or a geometric progression
+/// whose largest / smallest element length is `grading`, smallest at mid-span.
+fn x_stations(length: f64, nx: usize, grading: f64, model: Model) -> Vec<f64> {
+    let half_elements = match model {
+        Model::Half => nx,
+        Model::Full => nx / 2,
+    };
+    let ratio = if half_elements > 1 {
+        grading.powf(-1.0 / (half_elements - 1) as f64)
+    } else {
+        1.0
+    };
+    let sizes: Vec<f64> = (0..half_elements).map(|i| ratio.powi(i as i32)).collect();
+    let total: f64 = sizes.iter().sum();
+    let mut half = Vec::with_capacity(half_elements + 1);
+    half.push(0.0);
+    let mut x = 0.0;
+    for s in &sizes {
+        x += s / total * 0.5 * length;
+        half.push(x);
+    }
+    half[half_elements] = 0.5 * length;
+    match model {
+        Model::Half => half,
+        Model::Full => {
+            let mut full = half.clone();
+            full.extend(half.iter().rev().skip(1).map(|&x| length - x));
+            full
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::ElementKind;
+
+    fn settings(nx: usize, ny: usize, grading: f64, model: Model) -> MeshSettings {
+        MeshSettings {
+            nx,
+            ny,
+            element: ElementKind::Q4Sri,
+            model,
+            grading,
+            hourglass: 0.05,
+        }
+    }
+
+    const PLATE: Plate = Plate {
+        length: 0.2,
+        width: 0.2,
+        thickness: 0.02,
+    };
+
+    #[test]
+    fn graded_half_mesh_spans_the_half_length_with_the_requested_ratio() {
+        let m = PlateMesh::new(&PLATE, &settings(10, 2, 4.0, Model::Half));
+        let xs: Vec<f64> = (0..=10).map(|i| m.mesh.coords[i][0]).collect();
+        assert_eq!(xs[0], 0.0);
+        assert_eq!(xs[10], 0.1);
+        let first = xs[1] - xs[0];
+        let last = xs[10] - xs[9];
+        assert!((first / last - 4.0).abs() < 1e-12, "{first} / {last}");
+    }
+
+    #[test]
+    fn full_mesh_is_symmetric_and_clamped_at_both_ends() {
+        let m = PlateMesh::new(&PLATE, &settings(8, 2, 3.0, Model::Full));
+        for i in 0..=8 {
+            let a = m.mesh.coords[i][0];
+            let b = m.mesh.coords[8 - i][0];
+            assert!((a + b - 0.2).abs() < 1e-15);
+        }
+        assert_eq!(m.mesh.coords[m.mid], [0.1, 0.01]);
+        assert!(m.fixed_dofs[2 * 8] && m.fixed_dofs[2 * 8 + 1]);
+    }
+
+    #[test]
+    fn half_mesh_has_symmetry_at_mid_span_and_finds_probes() {
+        let m = PlateMesh::new(&PLATE, &settings(4, 2, 1.0, Model::Half));
+        assert!(m.fixed_dofs[2 * 4] && !m.fixed_dofs[2 * 4 + 1]);
+        assert_eq!(m.mesh.coords[m.top], [0.1, 0.02]);
+        assert_eq!(m.fold([0.15, 0.0]), [0.05, 0.0]);
+        assert_eq!(m.element_containing([0.1, 0.0]), Some(3));
+        assert_eq!(m.element_containing([0.01, 0.015]), Some(4));
+    }
+}
