@@ -47,17 +47,23 @@ impl Energies {
     ];
 }
 
-/// Tracks `|E(t) - E(0) - W_ext(t)| / max_{s <= t} max(E(s), |W_ext(s)|, E(0))`.
+/// Tracks the imbalance `|E(t) - E(0) - W_ext(t)|` and the energy scale
+/// `max(E(t), |W_ext(t)|, E(0))`. The reported balance error divides the imbalance by the
+/// largest scale of the whole run (a running scale would make the first steps of a pulse,
+/// when hardly any energy has entered yet, look like large errors); the running ratio is
+/// what the blow-up guard watches.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct BalanceMonitor {
     initial_total: Option<f64>,
-    scale: f64,
-    pub max_error: f64,
+    /// Largest energy scale so far, J.
+    pub scale: f64,
+    /// Largest imbalance so far, J.
+    pub max_imbalance: f64,
 }
 
 impl BalanceMonitor {
-    /// Records an instant and returns its balance error.
-    pub fn record(&mut self, e: &Energies) -> f64 {
+    /// Records an instant; returns its imbalance (J) and the running ratio.
+    pub fn record(&mut self, e: &Energies) -> (f64, f64) {
         let total = e.total();
         let initial = *self.initial_total.get_or_insert(total);
         self.scale = self
@@ -65,12 +71,22 @@ impl BalanceMonitor {
             .max(total.abs())
             .max(e.external_work.abs())
             .max(initial.abs());
-        let error = if self.scale > 0.0 {
-            (total - initial - e.external_work).abs() / self.scale
+        let imbalance = (total - initial - e.external_work).abs();
+        self.max_imbalance = self.max_imbalance.max(imbalance);
+        (imbalance, self.ratio(imbalance))
+    }
+
+    /// An imbalance relative to the largest scale so far (0 while nothing has happened).
+    pub fn ratio(&self, imbalance: f64) -> f64 {
+        if self.scale > 0.0 {
+            imbalance / self.scale
         } else {
             0.0
-        };
-        self.max_error = self.max_error.max(error);
-        error
+        }
+    }
+
+    /// The largest balance error of the run so far.
+    pub fn max_error(&self) -> f64 {
+        self.ratio(self.max_imbalance)
     }
 }

@@ -297,7 +297,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         initial_energy: Energies::default(),
         final_energy: Energies::default(),
     };
-    let mut last_loaded_time: Option<f64> = None;
+    let mut separated_at: Option<f64> = None;
     let mut in_contact = false;
     let mut row = Vec::with_capacity(history.columns.len());
     let progress_every = (last_step / 200).max(1);
@@ -315,11 +315,12 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 totals.contact_intervals.push([t, t]);
                 in_contact = true;
             }
-            last_loaded_time = Some(t);
+            separated_at = None;
             totals.peak_force = totals.peak_force.max(applied);
         } else if in_contact {
             close_interval(&mut totals.contact_intervals, t);
             in_contact = false;
+            separated_at = Some(t);
         }
         let stop = if n >= last_step {
             Some(if after_contact.is_some() {
@@ -328,8 +329,8 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 StopReason::EndTime
             })
         } else {
-            match (after_contact, last_loaded_time) {
-                (Some(after), Some(lt)) if applied == 0.0 && t - lt >= after - 1e-9 * dt => {
+            match (after_contact, separated_at) {
+                (Some(after), Some(since)) if t - since >= after - 1e-9 * dt => {
                     Some(StopReason::AfterContact)
                 }
                 _ => None,
@@ -363,7 +364,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             contact: law.map_or(0.0, |l| l.energy(force)),
             external_work,
         };
-        let balance_error = balance.record(&energies);
+        let (imbalance, balance_error) = balance.record(&energies);
         if n == 0 {
             totals.initial_energy = energies;
         }
@@ -396,7 +397,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 row.extend([st[0], st[1], st[3], st[2], von_mises(&st)]);
             }
             row.extend(energies.as_row());
-            row.push(balance_error);
+            row.push(imbalance); // divided by the run's largest energy at the end
             history.values.extend_from_slice(&row);
         }
         if wants_fields && (frames.due(n, dt) || stop.is_some()) {
@@ -411,7 +412,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             totals.final_time = t;
             totals.final_energy = energies;
             totals.final_impactor_velocity = impactor.map(|i| i.velocity);
-            totals.max_balance_error = balance.max_error;
+            totals.max_balance_error = balance.max_error();
             if in_contact {
                 close_interval(&mut totals.contact_intervals, t);
             }
@@ -450,6 +451,10 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         totals.impulse += 0.5 * (applied + next_force) * dt;
         force = if pulse.is_some() { 0.0 } else { next_force };
         n += 1;
+    }
+    let width = history.columns.len();
+    for r in history.values.chunks_exact_mut(width) {
+        r[width - 1] = balance.ratio(r[width - 1]);
     }
     Ok((history, totals))
 }

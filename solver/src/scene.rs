@@ -416,12 +416,21 @@ impl Scene {
     }
 }
 
-/// The parser's message, without the location it already repeats (we print our own).
+/// The parser's message without the location it repeats (we print our own) and without
+/// hints meant for programmers.
 fn first_line_without_location(message: &str) -> String {
     let first = message.lines().next().unwrap_or(message).trim();
-    match first.find(" at line ") {
-        Some(pos) => first[..pos].to_string(),
-        None => first.to_string(),
+    let mut text = first.strip_prefix("error: ").unwrap_or(first);
+    if let Some(rest) = text.strip_prefix("line ") {
+        // "line N column M: message"
+        if let Some((_, after)) = rest.split_once(": ") {
+            text = after;
+        }
+    }
+    let text = text.split(", set DuplicateKeyPolicy").next().unwrap_or(text);
+    match text {
+        "invalid floating point" => "expected a number".to_string(),
+        other => other.to_string(),
     }
 }
 

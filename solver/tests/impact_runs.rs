@@ -1,0 +1,171 @@
+//! Whole runs on small meshes, checked against invariants of the method:
+//! - impulse = m (v0 - v_final) (eqs. 19-20 with the trapezoidal impulse: round-off);
+//! - energy balance (central differences conserve energy to O(dt^2): bound 0.5 %);
+//! - symmetry: the half model equals the full model (round-off of a different summation);
+//! - determinism: the same scene gives bit-identical histories.
+
+use std::path::Path;
+
+use impact_solver::scene::{ElementKind, End, Load, MidSpanNode, Model};
+use impact_solver::{simulate, Outcome, Quiet, Scene};
+
+const ELASTIC: &str = include_str!("../../verification/scenes/example-elastic.yaml");
+const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
+
+/// The example scenes on a 20 x 4 mesh, no field output.
+fn small(text: &str) -> Scene {
+    let mut s = Scene::from_yaml(text, Path::new("small.yaml")).unwrap();
+    s.mesh.nx = 20;
+    s.mesh.ny = 4;
+    s.output.fields_every = None;
+    s.output.every = Some(1e-5);
+    s
+}
+
+fn run(scene: &Scene) -> Outcome {
+    simulate(scene, &mut Quiet).unwrap()
+}
+
+const ELEMENTS: [ElementKind; 3] = [ElementKind::Q4Full, ElementKind::Q4Sri, ElementKind::Q4OnePoint];
+
+#[test]
+fn impulse_equals_momentum_change_to_round_off_for_every_element_and_material() {
+    for text in [ELASTIC, PLASTIC] {
+        for element in ELEMENTS {
+            let mut scene = small(text);
+            scene.mesh.element = element;
+            let s = run(&scene).summary;
+            let err = s.impulse_momentum_error.unwrap();
+            assert!(err < 1e-9, "{element:?} plastic={}: {err:e}", scene.is_plastic());
+            assert!(s.impulse > 0.0 && s.final_impactor_velocity.unwrap() < 10.0);
+        }
+    }
+}
+
+#[test]
+fn energy_balances_within_half_a_percent() {
+    for text in [ELASTIC, PLASTIC] {
+        for element in ELEMENTS {
+            let mut scene = small(text);
+            scene.mesh.element = element;
+            let s = run(&scene).summary;
+            assert!(
+                s.max_energy_balance_error < 5e-3,
+                "{element:?} plastic={}: {:e}",
+                scene.is_plastic(),
+                s.max_energy_balance_error
+            );
+            // The energy is all accounted for: the impactor gave what the terms hold.
+            let f = s.final_energy;
+            assert!(f.impactor_kinetic < s.initial_energy.impactor_kinetic);
+            if scene.is_plastic() {
+                assert!(f.plastic_work > 0.0);
+            } else {
+                assert_eq!(f.plastic_work, 0.0);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_same_scene_gives_bit_identical_results() {
+    let scene = small(PLASTIC);
+    let a = run(&scene);
+    let b = run(&scene);
+    assert_eq!(a.history.values.len(), b.history.values.len());
+    assert!(a.history.values.iter().zip(&b.history.values).all(|(x, y)| x.to_bits() == y.to_bits()));
+    assert_eq!(a.summary.impulse.to_bits(), b.summary.impulse.to_bits());
+}
+
+#[test]
+fn half_model_equals_full_model() {
+    for text in [ELASTIC, PLASTIC] {
+        let half = small(text);
+        let mut full = half.clone();
+        full.mesh.model = Model::Full;
+        full.mesh.nx = 2 * half.mesh.nx;
+        let (h, f) = (run(&half).summary, run(&full).summary);
+        assert_eq!(h.dt, f.dt);
+        for (a, b, what) in [
+            (h.impulse, f.impulse, "impulse"),
+            (h.max_plate_displacement, f.max_plate_displacement, "displacement"),
+            (h.peak_contact_force, f.peak_contact_force, "peak force"),
+            (h.max_von_mises["A"], f.max_von_mises["A"], "von Mises at A"),
+        ] {
+            assert!(((a - b) / a).abs() < 1e-9, "{what}: half {a:e} full {b:e}");
+        }
+    }
+}
+
+/// NOTES: force on the top node with the indentation read at the mid-plane counts the
+/// local through-thickness compression twice; the energy balance must show it, while the
+/// consistent pairings (both at the mid-plane, both at the top) balance.
+#[test]
+fn the_literal_force_node_reading_shows_in_the_energy_balance() {
+    let mut literal = small(PLASTIC);
+    let mut top = small(PLASTIC);
+    let Load::Impactor(i) = &mut literal.load else { unreachable!() };
+    i.force_node = MidSpanNode::TopSurface;
+    let Load::Impactor(i) = &mut top.load else { unreachable!() };
+    i.force_node = MidSpanNode::TopSurface;
+    i.indentation_datum = MidSpanNode::TopSurface;
+    let consistent = run(&small(PLASTIC)).summary.max_energy_balance_error;
+    let both_top = run(&top).summary.max_energy_balance_error;
+    let literal = run(&literal).summary.max_energy_balance_error;
+    assert!(consistent < 5e-3 && both_top < 5e-3, "{consistent:e} {both_top:e}");
+    assert!(literal > 10.0 * consistent.max(both_top), "literal {literal:e} vs {consistent:e}");
+}
+
+#[test]
+fn after_contact_stops_once_the_impactor_has_left() {
+    let mut scene = small(PLASTIC);
+    scene.time.end = End::AfterContact { after: 2e-4, limit: 0.05 };
+    let s = run(&scene).summary;
+    let end = s.contact_duration;
+    assert!(matches!(s.stop_reason, impact_solver::integrator::StopReason::AfterContact));
+    assert!(
+        s.final_time >= end + 2e-4 - 1e-9 && s.final_time < end + 2e-4 + s.dt,
+        "stopped at {} for a separation at {end}",
+        s.final_time
+    );
+    // The same result as the fixed end time for everything up to then.
+    let full = run(&small(PLASTIC)).summary;
+    assert_eq!(full.impulse.to_bits(), s.impulse.to_bits());
+}
+
+#[test]
+fn a_pulse_delivers_its_impulse_and_balances_energy() {
+    let text = ELASTIC.replace(
+        "  impactor:\n",
+        "  pulse: {force: 86.5e3, duration: 1.0e-3}\n  unused_impactor:\n",
+    );
+    // Drop the impactor block: keep only the pulse line.
+    let text: String = {
+        let mut out = Vec::new();
+        let mut skipping = false;
+        for line in text.lines() {
+            if line.starts_with("  unused_impactor:") {
+                skipping = true;
+                continue;
+            }
+            if skipping && line.starts_with("    ") {
+                continue;
+            }
+            skipping = false;
+            out.push(line);
+        }
+        out.join("\n")
+    };
+    let mut scene = small(&text);
+    scene.output.probes.clear();
+    assert!(matches!(scene.load, Load::Pulse(_)));
+    let o = run(&scene);
+    let s = &o.summary;
+    // Trapezoidal impulse of a step that starts at t = 0: F T to within F dt / 2.
+    assert!((s.impulse - 86.5).abs() <= 0.5 * 86.5e3 * s.dt * 1.0001, "{}", s.impulse);
+    assert!(s.max_energy_balance_error < 5e-3, "{:e}", s.max_energy_balance_error);
+    assert_eq!(s.final_impactor_velocity, None);
+    for absent in ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"] {
+        assert!(!o.history.columns.iter().any(|c| c == absent), "{absent}");
+    }
+}

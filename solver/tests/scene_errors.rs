@@ -1,0 +1,105 @@
+//! Bad input gets one clear message naming the file, line and column, the field, the value
+//! and what is allowed - never a panic - and leaves no output behind.
+//!
+//! Reference: the scene contract of the README / ALGORITHM.md (which values are allowed).
+
+use std::path::{Path, PathBuf};
+
+use impact_solver::output::simulate_to_dir;
+use impact_solver::Scene;
+
+const EXAMPLE: &str = include_str!("../../verification/scenes/example-elastic.yaml");
+
+fn error_for(edit: impl Fn(&str) -> String) -> String {
+    let text = edit(EXAMPLE);
+    Scene::from_yaml(&text, Path::new("bad.yaml"))
+        .err()
+        .expect("the scene must be refused")
+        .to_string()
+}
+
+fn assert_mentions(message: &str, parts: &[&str]) {
+    for p in parts {
+        assert!(message.contains(p), "{message:?} does not mention {p:?}");
+    }
+}
+
+#[test]
+fn the_example_scene_is_accepted_as_written() {
+    let scene = Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap();
+    assert_eq!(scene.mesh.nx, 80);
+    assert_eq!(scene.output.probes, vec![("A".to_string(), [0.1, 0.0])]);
+}
+
+#[test]
+fn non_physical_values_name_line_column_field_value_and_range() {
+    let e = error_for(|s| s.replace("density: 7850.0", "density: -7850.0"));
+    assert_mentions(&e, &["bad.yaml:5:12", "material.density", "-7850", "> 0"]);
+    let e = error_for(|s| s.replace("poisson_ratio: 0.3\nmesh", "poisson_ratio: 0.5\nmesh"));
+    assert_mentions(&e, &["bad.yaml:7:18", "material.poisson_ratio", "0.5", "(-1, 0.5)"]);
+    let e = error_for(|s| s.replace("thickness: 0.020", "thickness: 0.0"));
+    assert_mentions(&e, &["bad.yaml:3:49", "plate.thickness", "> 0"]);
+    let e = error_for(|s| s.replace("ny: 16", "ny: 1"));
+    assert_mentions(&e, &["bad.yaml:8:", "mesh.ny", "= 1", "even integer in [2"]);
+    let e = error_for(|s| s.replace("ny: 16", "ny: 3"));
+    assert_mentions(&e, &["mesh.ny", "= 3", "mid-plane"]);
+    let e = error_for(|s| s.replace("x: 0.100, y: 0.0", "x: 0.100, y: 0.05"));
+    assert_mentions(&e, &["bad.yaml:24:", "output.probes.A.y", "0.05", "plate.thickness"]);
+    let e = error_for(|s| s.replace("end: 3.0e-3 ", "end: -1 "));
+    assert_mentions(&e, &["bad.yaml:20:", "time.end", "-1"]);
+    let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: 1.2}"));
+    assert_mentions(&e, &["time.dt.cfl", "1.2", "(0, 1]"]);
+}
+
+#[test]
+fn structural_errors_name_line_and_column() {
+    let e = error_for(|s| s.replace("density: 7850.0", "densty: 7850.0"));
+    assert_mentions(&e, &["bad.yaml:5:3", "unknown field `densty`", "expected one of"]);
+    let e = error_for(|s| s.replace("density: 7850.0", "density: heavy"));
+    assert_mentions(&e, &["bad.yaml:5:12", "expected a number"]);
+    let e = error_for(|s| s.replacen("  youngs_modulus: 207.0e9\n", "", 1));
+    assert_mentions(&e, &["bad.yaml:", "missing field `youngs_modulus`"]);
+    let e = error_for(|s| s.replace("mass: 18.0 ", "mass: 18.0\n    mass: 19.0 "));
+    assert_mentions(&e, &["bad.yaml:12:5", "duplicate mapping key: mass"]);
+    let e = error_for(|s| s.replace("q4-sri", "q4-quadratic"));
+    assert_mentions(&e, &["bad.yaml:8:", "q4-quadratic"]);
+    assert!(!e.contains("DuplicateKeyPolicy"));
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("impact-scene-errors-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn a_step_above_the_stable_limit_is_refused_before_any_output() {
+    let dir = scratch("dt");
+    let scene = dir.join("scene.yaml");
+    std::fs::write(&scene, EXAMPLE.replace("{cfl: 0.8}", "{fixed: 1.0e-6}")).unwrap();
+    let out = dir.join("out");
+    let e = simulate_to_dir(&scene, &out, false).unwrap_err().to_string();
+    assert_mentions(&e, &["scene.yaml:21:", "time.dt.fixed", "stable estimate"]);
+    assert!(!out.exists(), "nothing may be written");
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no staging folder left");
+}
+
+#[test]
+fn a_run_that_fails_midway_leaves_nothing_behind() {
+    // A hidden length of 10 um puts the law's maximum far below the first step's force.
+    let dir = scratch("midway");
+    let scene = dir.join("scene.yaml");
+    std::fs::write(
+        &scene,
+        EXAMPLE
+            .replace("length_unit: 1.0}", "length_unit: 1.0e-5}")
+            .replace("nx: 80, ny: 16", "nx: 8, ny: 2"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let e = simulate_to_dir(&scene, &out, false).unwrap_err().to_string();
+    assert_mentions(&e, &["run stopped at step", "no root", "maximum"]);
+    assert!(!out.exists());
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+}
