@@ -7,7 +7,7 @@ import sys
 
 from .contact import ContactLawExceeded
 from .scene import SceneError, load_scene
-from .solver import simulate, write_outputs
+from .solver import UnstableRun, simulate, write_outputs
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -17,17 +17,17 @@ def main(argv: list[str] | None = None) -> int:
     sim.add_argument("scene", help="scene YAML file (SI units)")
     sim.add_argument("--out", required=True, help="output directory")
     sim.add_argument("--progress", action="store_true", help="print progress to stderr")
-    cmp_ = sub.add_parser("compare", help="column-wise difference of two history.csv files")
-    cmp_.add_argument("a", help="history.csv (or its directory)")
-    cmp_.add_argument("b", help="reference history.csv (or its directory)")
-    args = ap.parse_args(argv)
-    if args.cmd == "compare":
+    sub.add_parser("compare", add_help=False,
+                   help="compare two runs (same as scripts/compare.py; see compare --help)")
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["compare"]:
         from .compare import main as compare_main
-        return compare_main(args.a, args.b)
+        return compare_main(argv[1:])
+    args = ap.parse_args(argv)
     try:
         scene = load_scene(args.scene)
         res = simulate(scene, progress=args.progress)
-    except (SceneError, ContactLawExceeded, ValueError) as exc:
+    except (SceneError, ContactLawExceeded, UnstableRun, ValueError) as exc:
         print(f"indep_fe: error: {exc}", file=sys.stderr)
         return 2
     write_outputs(res, args.out)

@@ -89,7 +89,7 @@ class Probe:
 
 @dataclass
 class Output:
-    every: float
+    every: float | None           # None: every step
     probes: list[Probe] = field(default_factory=list)
 
 
@@ -133,8 +133,8 @@ def _one_of(d, where: str) -> tuple[str, object]:
 def parse_scene(data: dict) -> Scene:
     if not isinstance(data, dict):
         raise SceneError("scene must be a YAML mapping")
-    _warn_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "name",
-                         "description"}, "scene")
+    _warn_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
+                  "scene")
 
     p = _req(data, "plate", "scene")
     plate = Plate(_pos(_req(p, "length", "plate"), "plate.length"),
@@ -153,7 +153,7 @@ def parse_scene(data: dict) -> Scene:
         _warn_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
         sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
         plast = Plasticity(yield_stress=sy0)
-        hard = pl.get("hardening", {"linear": 0.0})
+        hard = _req(pl, "hardening", "material.plasticity")
         kind, val = _one_of(hard, "material.plasticity.hardening")
         if kind == "linear":
             et = _pos(val, "material.plasticity.hardening.linear", allow_zero=True)
@@ -164,15 +164,18 @@ def parse_scene(data: dict) -> Scene:
             rows = [(float(a), float(b)) for a, b in val]
             if not rows:
                 raise SceneError("hardening.table is empty")
-            if rows[0][0] != 0.0:
-                rows.insert(0, (0.0, sy0))
-            if rows[0][1] != sy0:
-                raise SceneError("hardening.table must start at (0, yield_stress)")
+            # the table must start at (0, yield_stress) (to 1e-9 relative): an error, never patched
+            if rows[0][0] != 0.0 or abs(rows[0][1] - sy0) > 1e-9 * sy0:
+                raise SceneError(f"hardening.table[0] = {list(rows[0])} must be "
+                                 f"[0, yield_stress] = [0, {sy0:g}]")
+            if not all(math.isfinite(a) and math.isfinite(b) for a, b in rows):
+                raise SceneError("hardening.table: entries must be finite numbers")
             ks = [r[0] for r in rows]
             if any(b <= a for a, b in zip(ks, ks[1:])):
                 raise SceneError("hardening.table: plastic strains must increase strictly")
-            if any(r[1] <= 0 for r in rows):
-                raise SceneError("hardening.table: stresses must be > 0")
+            ss = [r[1] for r in rows]
+            if any(b < a for a, b in zip(ss, ss[1:])):
+                raise SceneError("hardening.table: flow stresses must not decrease")
             plast.table = rows
         else:
             raise SceneError(f"unknown hardening '{kind}' (linear | table)")
@@ -250,12 +253,16 @@ def parse_scene(data: dict) -> Scene:
     else:
         raise SceneError("time.dt must be {cfl: c} or {fixed: dt}")
 
-    o = _req(data, "output", "scene")
+    o = data.get("output") or {}
     _warn_unknown(o, {"every", "probes", "fields"}, "output")
     probes = [Probe(str(name), float(_req(pr, "x", f"output.probes.{name}")),
                     float(_req(pr, "y", f"output.probes.{name}")))
               for name, pr in (o.get("probes") or {}).items()]
-    output = Output(_pos(_req(o, "every", "output"), "output.every"), probes)
+    for pr in probes:
+        if not (0.0 <= pr.x <= plate.length and 0.0 <= pr.y <= plate.thickness):
+            raise SceneError(f"output.probes.{pr.name} = ({pr.x}, {pr.y}) must lie in the plate")
+    every = o.get("every")      # omitted: a history row every step
+    output = Output(None if every is None else _pos(every, "output.every"), probes)
 
     return Scene(plate, material, mesh, impactor, pulse, ts, output)
 

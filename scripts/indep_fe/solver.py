@@ -24,9 +24,20 @@ ENERGY_COLUMNS = ["plate_kinetic_J", "impactor_kinetic_J", "strain_energy_J", "p
 PROBE_SUFFIXES = ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"]
 
 
-def history_columns(probe_names: list[str]) -> list[str]:
-    cols = ["time_s", "contact_force_N", "indentation_m", "impactor_displacement_m",
-            "impactor_velocity_mps", "top_uy_m", "mid_uy_m", "bottom_uy_m"]
+IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
+# Blow-up guard (ALGORITHM.md section 7): imbalance above this multiple of the largest energy
+# scale reached so far stops the run as unstable.
+BLOW_UP_RATIO = 10.0
+
+
+class UnstableRun(RuntimeError):
+    pass
+
+
+def history_columns(probe_names: list[str], impact: bool = True) -> list[str]:
+    """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns."""
+    cols = ["time_s", "contact_force_N"] + (IMPACT_COLUMNS if impact else [])
+    cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
     for p in probe_names:
         cols += [f"{p}_{s}" for s in PROBE_SUFFIXES]
     return cols + ENERGY_COLUMNS
@@ -84,14 +95,16 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     w_flat = form.w.ravel()
     material = MaterialModel(mat, nel * ngp)
 
-    # probes: x > L/2 mirrored in the half model; nearest integration point of the element
+    # probes, sorted by name (column order): x > L/2 mirrored in the half model; nearest
+    # integration point of the element containing the point
+    probes = sorted(scene.output.probes, key=lambda p: p.name)
     probe_pts = []
-    for pr in scene.output.probes:
+    for pr in probes:
         x = plate.length - pr.x if (ms.model == "half" and pr.x > plate.length / 2) else pr.x
         e = find_element(pm, x, pr.y, plate.length)
         d2 = ((form.gp_xy[e] - np.array([x, pr.y])) ** 2).sum(axis=1)
         probe_pts.append(e * ngp + int(np.argmin(d2)))
-    probe_names = [pr.name for pr in scene.output.probes]
+    probe_names = [pr.name for pr in probes]
 
     imp, pulse = scene.impactor, scene.pulse
     node_of = {"mid-plane": pm.mid, "top-surface": pm.top}
@@ -108,10 +121,10 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     ts = scene.time
     n_limit = steps_for(ts.limit, dt)
     n_end = steps_for(ts.end, dt) if ts.end is not None else None
-    n_after = steps_for(ts.after_contact, dt) if ts.after_contact is not None else None
-    every = scene.output.every
+    after = ts.after_contact
+    every = scene.output.every      # None: a row every step
 
-    columns = history_columns(probe_names)
+    columns = history_columns(probe_names, impact=imp is not None)
     rows: list[list] = []
 
     # state at t_n
@@ -122,20 +135,19 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     vS = v0 if imp is not None else 0.0
     W_ext = 0.0
     plastic_work = 0.0
-    E0 = 0.5 * m_s * v0 * v0 if imp is not None else 0.0
-    denom = E0
+    E0 = None            # total energy at t_0
+    scale = 0.0          # running max of max(|E(t_k)|, |W_ext(t_k)|, |E(0)|)
+    max_imbalance = 0.0
 
     impulse = 0.0
     peak_F = 0.0
     max_down = 0.0
-    max_err = 0.0
     max_vm = {p: 0.0 for p in probe_names}
     intervals: list[list] = []
     prev_load = 0.0
-    had_contact = False
-    zero_since = None
+    t_sep = None         # first t_n with F_n = 0 after the last contact interval
     k_row = 1
-    next_row = steps_for(k_row * every, dt)
+    next_row = steps_for(k_row * every, dt) if every is not None else 1
     top_uy, mid_uy, bot_uy = 2 * pm.top + 1, 2 * pm.mid + 1, 2 * pm.bottom + 1
     fy = 2 * force_node + 1
 
@@ -150,14 +162,18 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         elif load == 0.0 and prev_load > 0.0:
             intervals[-1][1] = t
         if load > 0.0:
-            had_contact, zero_since = True, None
-        elif had_contact and zero_since is None:
-            zero_since = n
+            t_sep = None
+        elif prev_load > 0.0:
+            t_sep = t
         prev_load = load
         if n_end is not None:
             last = n >= n_end
-        else:   # end: {after_contact: T}, with time.limit as the hard stop
-            last = n >= n_limit or (zero_since is not None and n - zero_since >= n_after)
+            stop_reason = "end_time"
+        else:   # end: {after_contact: T}: first t_n with t_n - t_sep >= T; time.limit hard stop
+            last = n >= n_limit
+            stop_reason = "time_limit"
+            if not last and t_sep is not None and t - t_sep >= after - 1e-9 * dt:
+                last, stop_reason = True, "after_contact"
 
         # 1. internal forces at u_n (material update, once per step)
         eps = (Bg @ u).reshape(-1, 4)
@@ -185,9 +201,16 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         e_imp = 0.5 * m_s * vS * vS if imp is not None else 0.0
         e_con = law.energy(F) if imp is not None else 0.0
         total = e_kin + e_imp + s * strain_energy + s * plastic_work + s * hg_energy + e_con
-        denom = max(denom, total, abs(W_ext), E0)
-        err = abs(total - E0 - W_ext) / denom if denom > 0 else 0.0
-        max_err = max(max_err, err)
+        if E0 is None:
+            E0 = total
+        scale = max(scale, abs(total), abs(W_ext), abs(E0))
+        imbalance = abs(total - E0 - W_ext)
+        max_imbalance = max(max_imbalance, imbalance)
+        running = imbalance / scale if scale > 0 else 0.0
+        if not (math.isfinite(running) and running <= BLOW_UP_RATIO):
+            raise UnstableRun(f"unstable at step {n} (t = {t:.6e} s): energy imbalance "
+                              f"{imbalance:.6e} J against an energy scale {scale:.6e} J "
+                              f"(dt = {dt:.6e} s = {dt / dt_crit:.3f} dt_crit)")
 
         peak_F = max(peak_F, load)
         max_down = min(max_down, u[mid_uy])
@@ -196,21 +219,21 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             max_vm[name] = max(max_vm[name], float(val))
 
         if n == 0 or n >= next_row or last:
+            row = [t, load]
             if imp is not None:
                 d_c = -u[2 * datum + 1]
-                impact_cols = [dS - d_c, dS, vS]
-            else:
-                impact_cols = [None, None, None]
-            row = [t, load] + impact_cols + [u[top_uy], u[mid_uy], u[bot_uy]]
+                row += [dS - d_c, dS, vS]
+            row += [u[top_uy], u[mid_uy], u[bot_uy]]
             for pi, p in enumerate(probe_pts):
                 sx = stress[p]
                 row += [sx[0], sx[1], sx[3], sx[2], float(vm[pi])]
+            # the last entry holds the imbalance (J) until the run's energy scale is known
             row += [e_kin, e_imp, s * strain_energy, s * plastic_work, s * hg_energy, e_con,
-                    W_ext, err]
+                    W_ext, imbalance]
             rows.append(row)
             while next_row <= n:
                 k_row += 1
-                next_row = steps_for(k_row * every, dt)
+                next_row = steps_for(k_row * every, dt) if every is not None else n + 1
         if progress and n % 2000 == 0:
             print(f"  step {n} t = {t:.4e} s F = {load:.4e} N", file=sys.stderr)
         if last:
@@ -237,6 +260,14 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         u, v_half = u_new, v_new
         n += 1
 
+    # contact still open at the end of the run: closed at the final time
+    if intervals and intervals[-1][1] is None:
+        intervals[-1][1] = n * dt
+    # balance error: imbalance over the largest energy scale of the WHOLE run (section 7)
+    ratio = (lambda x: x / scale) if scale > 0 else (lambda x: 0.0)
+    for row in rows:
+        row[-1] = ratio(row[-1])
+
     summary = {
         "solver": "indep_fe (Python reference, scripts/indep_fe)",
         "impulse_Ns": impulse,
@@ -246,12 +277,17 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         "contact_duration_s": intervals[-1][1] if intervals else 0.0,
         "final_impactor_velocity_mps": vS if imp is not None else None,
         "impactor_momentum_change_Ns": m_s * (v0 - vS) if imp is not None else None,
+        "impulse_momentum_error": (abs(impulse - m_s * (v0 - vS)) / (m_s * v0)
+                                   if imp is not None else None),
         "max_von_mises_Pa": max_vm,
-        "max_energy_balance_error": max_err,
+        "max_energy_balance_error": ratio(max_imbalance),
         "dt_s": dt,
         "dt_critical_s": dt_crit,
         "n_steps": n,
         "end_time_s": n * dt,
+        "final_time_s": n * dt,
+        "stop_reason": stop_reason,
+        "cfl": dt / dt_crit,
         "n_elements": pm.n_elements,
         "n_nodes": pm.n_nodes,
         "element": ms.element,

@@ -107,3 +107,12 @@ def test_radial_return_general_state_consistency():
     assert np.allclose(von_mises(s[yielded]), SY0 + H * model.k[yielded], rtol=1e-12)
     assert np.allclose(model.eps_p[:, :3].sum(1), 0.0, atol=1e-15)   # plastic incompressibility
     assert np.all(von_mises(s[~yielded]) <= SY0)
+
+
+@pytest.mark.parametrize("table", [[[0.01, 300e6]], [[0.0, 260e6], [0.01, 300e6]], []])
+def test_hardening_table_must_start_at_yield(table):
+    """A table whose first row is not (0, yield_stress) is an error, never patched."""
+    from helpers import scene
+    from indep_fe.scene import SceneError
+    with pytest.raises(SceneError, match="table"):
+        scene(**{"material.plasticity": {"yield_stress": 250e6, "hardening": {"table": table}}})
