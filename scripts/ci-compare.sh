@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# CI gate: `impact simulate` against the independent Python FE (scripts/indep_fe) on small
+# scenes with the same element, mesh and fixed dt (scripts/ci-scenes/), then the VTK field
+# output of one of them read back with meshio (scripts/ci_vtk_check.py).
+#
+# Tolerance: every history column within 1e-8 of its peak (L-inf), every summary metric within
+# 1e-8 relative, contact intervals identical to the step. Measured: <= 3e-11 (see
+# scripts/README.md, "Agreement measured"). Fails (exit 1) when any scene fails; all scenes are
+# run first. Outputs go to $CI_COMPARE_OUT (default: a temporary folder, removed on success).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+TOL="${CI_COMPARE_TOL:-1e-8}"
+
+echo "== ci-compare: build the release binary"
+cargo build --release --quiet -p impact-verification
+impact="$root/target/release/impact"
+
+scripts/setup-venv.sh
+py="$root/.venv/bin/python"
+
+out="${CI_COMPARE_OUT:-$(mktemp -d)}"
+mkdir -p "$out"
+failed=()
+start=$SECONDS
+for scene in scripts/ci-scenes/*.yaml; do
+    name="$(basename "$scene" .yaml)"
+    echo "== ci-compare: $name"
+    if ! "$impact" simulate "$scene" --out "$out/$name/rust" --quiet; then
+        failed+=("$name: impact simulate failed"); continue
+    fi
+    if ! PYTHONPATH="$root/scripts" "$py" -m indep_fe simulate "$scene" --out "$out/$name/python" >/dev/null; then
+        failed+=("$name: the Python solver failed"); continue
+    fi
+    if ! "$py" scripts/compare.py "$out/$name/rust" "$out/$name/python" --tol "$TOL" \
+            --json "$out/$name/compare.json" > "$out/$name/compare.txt"; then
+        cat "$out/$name/compare.txt"
+        failed+=("$name: differences beyond $TOL")
+        continue
+    fi
+    grep -E "^(== wall time|OK)" "$out/$name/compare.txt" | sed 's/^/   /'
+done
+
+echo "== ci-compare: VTK fields of impact-elastic read back with meshio"
+if ! "$py" scripts/ci_vtk_check.py scripts/ci-scenes/impact-elastic.yaml \
+        "$out/impact-elastic/rust" "$out/impact-elastic/python"; then
+    failed+=("impact-elastic: VTK field check")
+fi
+
+echo "== ci-compare: $(( SECONDS - start )) s for the runs and checks"
+if (( ${#failed[@]} )); then
+    printf 'ci-compare: FAIL: %s\n' "${failed[@]}" >&2
+    echo "ci-compare: outputs kept in $out" >&2
+    exit 1
+fi
+[[ -n "${CI_COMPARE_OUT:-}" ]] || rm -rf "$out"
+echo "ci-compare: OK"
