@@ -126,6 +126,11 @@ pub trait Formulation: Sync {
     fn add_hourglass(&self, _e: usize, _u: &ElementVector, _f: &mut ElementVector) -> f64 {
         0.0
     }
+    /// Hourglass energy (J) of element `e` at `u`, without forces.
+    #[inline(always)]
+    fn hourglass_energy(&self, _e: usize, _u: &ElementVector) -> f64 {
+        0.0
+    }
     /// Element volume (area * W), m^3.
     fn volume(&self, e: usize) -> f64;
 }
@@ -333,6 +338,20 @@ pub struct OnePointQ4 {
 }
 
 const HOURGLASS_H: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
+
+impl OnePointQ4 {
+    /// Hourglass mode amplitudes `q_x = gamma . u_x`, `q_y = gamma . u_y`, m.
+    #[inline(always)]
+    fn hourglass_modes(&self, e: usize, u: &ElementVector) -> (f64, f64) {
+        let g = &self.gamma[e];
+        let (mut qx, mut qy) = (0.0, 0.0);
+        for a in 0..4 {
+            qx += g[a] * u[2 * a];
+            qy += g[a] * u[2 * a + 1];
+        }
+        (qx, qy)
+    }
+}
 const CENTROID_XI: [[f64; 2]; 1] = [[0.0, 0.0]];
 
 impl OnePointQ4 {
@@ -392,18 +411,18 @@ impl Formulation for OnePointQ4 {
     }
     #[inline(always)]
     fn add_hourglass(&self, e: usize, u: &ElementVector, f: &mut ElementVector) -> f64 {
-        let g = &self.gamma[e];
-        let k = self.stiffness[e];
-        let (mut qx, mut qy) = (0.0, 0.0);
-        for a in 0..4 {
-            qx += g[a] * u[2 * a];
-            qy += g[a] * u[2 * a + 1];
-        }
+        let (g, k) = (&self.gamma[e], self.stiffness[e]);
+        let (qx, qy) = self.hourglass_modes(e, u);
         for a in 0..4 {
             f[2 * a] += k * qx * g[a];
             f[2 * a + 1] += k * qy * g[a];
         }
         0.5 * k * (qx * qx + qy * qy)
+    }
+    #[inline(always)]
+    fn hourglass_energy(&self, e: usize, u: &ElementVector) -> f64 {
+        let (qx, qy) = self.hourglass_modes(e, u);
+        0.5 * self.stiffness[e] * (qx * qx + qy * qy)
     }
     fn volume(&self, e: usize) -> f64 {
         self.volume[e]

@@ -11,7 +11,9 @@ use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::impactor::RigidImpactor;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
-use crate::mesh::PlateMesh;
+use crate::material::Elastic;
+use crate::mesh::{Mesh, PlateMesh};
+use crate::stiffness::LinearKernel;
 use crate::scene::{DtChoice, End, Load, Scene};
 
 /// Energy error beyond which a run is stopped as unstable: total energy more than this
@@ -28,6 +30,9 @@ pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     pub mass: Vec<f64>,
     /// 1/mass per dof, 0 on constrained dofs.
     pub inverse_mass: Vec<f64>,
+    /// Precomputed element stiffness, used instead of the stress path when the material is
+    /// linear elastic (see [`PlateModel::with_linear_kernel`]).
+    pub linear: Option<LinearKernel>,
 }
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
@@ -43,11 +48,15 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             material,
             mass,
             inverse_mass,
+            linear: None,
         }
     }
 
     /// Internal forces at `u` into `f` (overwritten), updating the material states.
     pub fn internal_forces(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        if let Some(linear) = &self.linear {
+            return linear.internal_forces(&self.formulation, u, f);
+        }
         f.fill(0.0);
         let mut energy = ElementEnergy::default();
         let p = F::POINTS;
@@ -59,6 +68,13 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             energy += en;
         }
         energy
+    }
+
+    /// Switches the internal forces to precomputed element stiffness matrices. Only valid
+    /// for a linear elastic material (the caller's guarantee: `M = Elastic`).
+    pub fn with_linear_kernel(mut self, mesh: &Mesh, elastic: &Elastic) -> Self {
+        self.linear = Some(LinearKernel::new(&self.formulation, elastic, mesh));
+        self
     }
 
     /// The critical time step 2 / omega_max from the element eigenvalue bound (eq. 15), s.

@@ -16,6 +16,7 @@ pub mod material;
 pub mod mesh;
 pub mod output;
 pub mod scene;
+pub mod stiffness;
 pub mod summary;
 
 use std::time::Instant;
@@ -78,23 +79,26 @@ impl Run<'_> {
         observer: &mut dyn Observer,
     ) -> Result<(Summary, History)> {
         let m = &self.scene.material;
+        let density = m.density;
         match VonMises::new(m) {
-            Some(plastic) => self.with_model(formulation, plastic, observer),
-            None => self.with_model(
-                formulation,
-                Elastic::new(m.youngs_modulus, m.poisson_ratio),
-                observer,
-            ),
+            Some(plastic) => {
+                let model = PlateModel::new(formulation, plastic, self.mesh, density);
+                self.with_model(model, observer)
+            }
+            None => {
+                let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+                let model = PlateModel::new(formulation, elastic, self.mesh, density)
+                    .with_linear_kernel(&self.mesh.mesh, &elastic);
+                self.with_model(model, observer)
+            }
         }
     }
 
     fn with_model<F: Formulation, M: ConstitutiveModel>(
         &self,
-        formulation: F,
-        material: M,
+        mut model: PlateModel<F, M>,
         observer: &mut dyn Observer,
     ) -> Result<(Summary, History)> {
-        let mut model = PlateModel::new(formulation, material, self.mesh, self.scene.material.density);
         let setup_done = Instant::now();
         let (history, totals) = integrator::run(self.scene, self.mesh, &mut model, observer)?;
         let timing = summary::Timing {

@@ -124,6 +124,10 @@ impl FlowCurve {
     #[inline]
     fn piece(&self, k: f64) -> (f64, f64, Option<f64>) {
         let p = &self.points;
+        if p.len() == 1 {
+            // Linear hardening: one piece, no search.
+            return (p[0].1 + self.tail_slope * k, self.tail_slope, None);
+        }
         // Index of the last breakpoint at or before k.
         let i = p.partition_point(|&(kk, _)| kk <= k).saturating_sub(1);
         if i + 1 < p.len() {
@@ -194,14 +198,16 @@ impl ConstitutiveModel for VonMises {
         let mut s = self.elastic.stress_of(&ee);
         let mean = (s[0] + s[1] + s[2]) / 3.0;
         let dev = [s[0] - mean, s[1] - mean, s[2] - mean, s[3]];
-        let q = (1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])
-            + 3.0 * dev[3] * dev[3])
-            .sqrt();
+        let q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])
+            + 3.0 * dev[3] * dev[3];
         let k_old = state.eqps;
         let sy_old = self.flow.flow_stress(k_old);
         let mut plastic_work_density = 0.0;
-        if q > sy_old {
-            let dk = self.plastic_increment(q, k_old);
+        // Compare squares: most points are elastic and need no square root.
+        if q2 > sy_old * sy_old {
+            let q = q2.sqrt();
+            // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
+            let dk = self.plastic_increment(q, k_old).max(0.0);
             // Flow direction 3/2 dev/q; plastic strain increment dk * that (tensor shear).
             let r = 1.5 * dk / q;
             let dp = [r * dev[0], r * dev[1], r * dev[2], r * dev[3]];

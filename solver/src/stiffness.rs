@@ -1,0 +1,125 @@
+//! The linear-elastic fast path: for an elastic material the element internal force
+//! `sum_p w_p B_p^T D B_p u_e` (eq. 14) is exactly `K_e u_e` (eq. 13), so the element
+//! stiffness is formed once and applied each step. Elements of identical shape share one
+//! matrix (a uniform mesh has one, a graded mesh one per column).
+
+use std::collections::HashMap;
+
+use crate::element::{element_stiffness, gather, scatter_add, ElementEnergy, Formulation};
+use crate::material::Elastic;
+use crate::mesh::Mesh;
+
+pub struct LinearKernel {
+    /// Distinct element stiffness matrices, N/m.
+    matrices: Vec<[[f64; 8]; 8]>,
+    /// Index into `matrices` per element.
+    matrix_of: Vec<u32>,
+}
+
+impl LinearKernel {
+    pub fn new<F: Formulation>(formulation: &F, elastic: &Elastic, mesh: &Mesh) -> LinearKernel {
+        let mut matrices = Vec::new();
+        let mut seen: HashMap<[u64; 6], u32> = HashMap::new();
+        let matrix_of = (0..formulation.n_elements())
+            .map(|e| {
+                // The shape: nodes 1..3 relative to node 0, bit for bit.
+                let c = mesh.element_coords(e);
+                let key: [u64; 6] = std::array::from_fn(|i| {
+                    let (a, k) = (1 + i / 2, i % 2);
+                    (c[a][k] - c[0][k]).to_bits()
+                });
+                *seen.entry(key).or_insert_with(|| {
+                    matrices.push(element_stiffness(formulation, elastic, e));
+                    (matrices.len() - 1) as u32
+                })
+            })
+            .collect();
+        LinearKernel {
+            matrices,
+            matrix_of,
+        }
+    }
+
+    /// Number of distinct element matrices.
+    pub fn n_matrices(&self) -> usize {
+        self.matrices.len()
+    }
+
+    /// Internal forces `K u` into `f` (overwritten) with the strain and hourglass energies.
+    pub fn internal_forces<F: Formulation>(&self, formulation: &F, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        f.fill(0.0);
+        let mut energy = ElementEnergy::default();
+        for (e, &m) in self.matrix_of.iter().enumerate() {
+            let nodes = formulation.nodes(e);
+            let ue = gather(nodes, u);
+            let k = &self.matrices[m as usize];
+            let mut fe = [0.0; 8];
+            let mut work = 0.0;
+            for i in 0..8 {
+                let mut s = 0.0;
+                for j in 0..8 {
+                    s += k[i][j] * ue[j];
+                }
+                fe[i] = s;
+                work += s * ue[i];
+            }
+            let hourglass = formulation.hourglass_energy(e, &ue);
+            energy.strain += 0.5 * work - hourglass;
+            energy.hourglass += hourglass;
+            scatter_add(nodes, &fe, f);
+        }
+        energy
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Reference: the stress path of eq. (14) (`element_response` with the elastic
+    //! material). `K_e u_e` is the same linear map, so forces and energies agree to round-off.
+    use super::*;
+    use crate::element::{FullQ4, OnePointQ4, SelectiveQ4};
+    use crate::integrator::PlateModel;
+    use crate::mesh::PlateMesh;
+    use crate::scene::{ElementKind, MeshSettings, Model, Plate};
+
+    fn compare<F: Formulation>(make: impl Fn(&Mesh) -> F) {
+        let plate = Plate { length: 0.2, width: 0.2, thickness: 0.02 };
+        let settings = MeshSettings {
+            nx: 12,
+            ny: 4,
+            element: ElementKind::Q4Sri,
+            model: Model::Half,
+            grading: 3.0,
+            hourglass: 0.05,
+        };
+        let mesh = PlateMesh::new(&plate, &settings);
+        let elastic = Elastic::new(207e9, 0.3);
+        let mut generic = PlateModel::new(make(&mesh.mesh), elastic, &mesh, 7850.0);
+        let mut linear = PlateModel::new(make(&mesh.mesh), elastic, &mesh, 7850.0)
+            .with_linear_kernel(&mesh.mesh, &elastic);
+        // Shapes are matched bit for bit: at least one matrix per graded column, at most one
+        // per element (row spacings h j / ny may differ in the last bit).
+        let n = linear.linear.as_ref().unwrap().n_matrices();
+        assert!((12..=48).contains(&n), "{n} matrices");
+        // A deterministic, non-smooth displacement field (it excites hourglass modes).
+        let u: Vec<f64> = (0..2 * mesh.mesh.n_nodes())
+            .map(|i| 1e-5 * ((i as f64 * 0.7).sin() + 0.3 * (i as f64 * 2.3).cos()))
+            .collect();
+        let (mut fa, mut fb) = (vec![0.0; u.len()], vec![0.0; u.len()]);
+        let ea = generic.internal_forces(&u, &mut fa);
+        let eb = linear.internal_forces(&u, &mut fb);
+        let scale = fa.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in fa.iter().zip(&fb) {
+            assert!((a - b).abs() < 1e-12 * scale, "{a:e} vs {b:e}");
+        }
+        assert!((ea.strain - eb.strain).abs() < 1e-12 * ea.strain);
+        assert!((ea.hourglass - eb.hourglass).abs() <= 1e-12 * ea.strain);
+    }
+
+    #[test]
+    fn linear_kernel_equals_the_stress_path_for_every_element() {
+        compare(|m| FullQ4::new(m, 0.2).unwrap());
+        compare(|m| SelectiveQ4::new(m, 0.2).unwrap());
+        compare(|m| OnePointQ4::new(m, 0.2, 0.05, Elastic::new(207e9, 0.3).p_modulus()).unwrap());
+    }
+}
