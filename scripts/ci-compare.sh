@@ -41,6 +41,24 @@ for scene in scripts/ci-scenes/*.yaml; do
     grep -E "^(== wall time|OK)" "$out/$name/compare.txt" | sed 's/^/   /'
 done
 
+# Known disagreements (scripts/known-disagreements/, each file says why): run and reported as
+# XFAIL while they still disagree, XPASS once fixed (then move the scene to ci-scenes/).
+# They do not fail the gate.
+for scene in scripts/known-disagreements/*.yaml; do
+    [[ -e "$scene" ]] || continue
+    name="known-$(basename "$scene" .yaml)"
+    if "$impact" simulate "$scene" --out "$out/$name/rust" --quiet \
+        && PYTHONPATH="$root/scripts" "$py" -m indep_fe simulate "$scene" --out "$out/$name/python" >/dev/null; then
+        if "$py" scripts/compare.py "$out/$name/rust" "$out/$name/python" --tol "$TOL" > "$out/$name/compare.txt"; then
+            echo "== ci-compare: XPASS $name: the two codes now agree; move $scene to scripts/ci-scenes/"
+        else
+            echo "== ci-compare: XFAIL $name (known, see $scene): $(grep -c FAIL "$out/$name/compare.txt") differences beyond $TOL"
+        fi
+    else
+        echo "== ci-compare: XFAIL $name: a run failed"
+    fi
+done
+
 echo "== ci-compare: VTK fields of impact-elastic read back with meshio"
 if ! "$py" scripts/ci_vtk_check.py scripts/ci-scenes/impact-elastic.yaml \
         "$out/impact-elastic/rust" "$out/impact-elastic/python"; then
