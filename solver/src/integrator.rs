@@ -20,6 +20,9 @@ use crate::scene::{DtChoice, End, Load, Scene};
 /// multiple of the largest energy the run was given. A stable run stays below 1e-2.
 pub const BLOW_UP_BALANCE_ERROR: f64 = 10.0;
 
+/// Steps between checks for inverted elements (a run that inverts one stops within this).
+pub const INVERSION_CHECK_EVERY: u64 = 32;
+
 /// The plate model: formulation, material, per-point states, masses.
 pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     pub formulation: F,
@@ -394,6 +397,21 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 ),
             });
         }
+        if n % INVERSION_CHECK_EVERY == 0 || stop.is_some() {
+            if let Some(e) = mesh.mesh.first_inverted(&u) {
+                let c = mesh.mesh.element_coords(e);
+                return Err(Error::Run {
+                    step: n,
+                    time_s: t,
+                    what: format!(
+                        "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: the displacements are no longer small against the mesh (dt = {dt:.6e} s, {:.3} of the stable estimate)",
+                        0.25 * (c[0][0] + c[1][0] + c[2][0] + c[3][0]),
+                        0.25 * (c[0][1] + c[1][1] + c[2][1] + c[3][1]),
+                        dt / dt_critical
+                    ),
+                });
+            }
+        }
         let mid_uy = u[2 * mesh.mid + 1];
         totals.max_downward_mid = totals.max_downward_mid.min(mid_uy);
         let want_row = rows.due(n, dt) || stop.is_some();
@@ -446,13 +464,20 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 let delta_c = -u[2 * datum + 1];
                 let alpha_free = imp.displacement_after(dt, force, 0.0) - delta_c;
                 let extra = dt * dt / (6.0 * imp.mass);
-                let f1 = solve_contact_force(law, extra, alpha_free).map_err(|b| Error::Run {
-                    step: n + 1,
-                    time_s: t + dt,
-                    what: format!(
-                        "the contact law has no root: the step needs an indentation of {:.6e} m but the law's maximum gives {:.6e} m at a force of {:.6e} N (see NOTES: eq. (4) has a maximum at P r chi = l^2); use a larger length_unit, the johnson law, a softer impact or a smaller dt",
-                        b.required, b.available, b.max_force
-                    ),
+                let f1 = solve_contact_force(law, extra, alpha_free).map_err(|b| {
+                    let cause = if b.required > scene.plate.thickness {
+                        "an indentation beyond the plate thickness: the run has gone unstable"
+                    } else {
+                        "see NOTES: eq. (4) has a maximum at P r chi = l^2; use a larger length_unit, the johnson law, a softer impact or a smaller dt"
+                    };
+                    Error::Run {
+                        step: n + 1,
+                        time_s: t + dt,
+                        what: format!(
+                            "the contact law has no root: the step needs an indentation of {:.6e} m but the law's maximum gives {:.6e} m at a force of {:.6e} N ({cause}; dt = {dt:.6e} s is {:.3} of the stable estimate)",
+                            b.required, b.available, b.max_force, dt / dt_critical
+                        ),
+                    }
                 })?;
                 imp.advance(dt, force, f1);
                 alpha = imp.displacement - delta_c;

@@ -18,6 +18,23 @@ impl Mesh {
     pub fn element_coords(&self, e: usize) -> [[f64; 2]; 4] {
         self.elements[e].map(|n| self.coords[n as usize])
     }
+
+    /// The first element whose deformed shape (coordinates + `u`, 2 dofs per node) has a
+    /// corner with a non-positive Jacobian: inverted or collapsed.
+    pub fn first_inverted(&self, u: &[f64]) -> Option<usize> {
+        self.elements.iter().position(|nodes| {
+            let p = nodes.map(|n| {
+                let n = n as usize;
+                [self.coords[n][0] + u[2 * n], self.coords[n][1] + u[2 * n + 1]]
+            });
+            (0..4).any(|a| {
+                let (next, prev) = (p[(a + 1) % 4], p[(a + 3) % 4]);
+                let e1 = [next[0] - p[a][0], next[1] - p[a][1]];
+                let e2 = [prev[0] - p[a][0], prev[1] - p[a][1]];
+                e1[0] * e2[1] - e1[1] * e2[0] <= 0.0
+            })
+        })
+    }
 }
 
 /// The mesh of the plate with what the solver needs to know about it.
@@ -52,6 +69,13 @@ impl PlateMesh {
                 coords.push([x, y]);
             }
         }
+        let i_mid = match settings.model {
+            Model::Half => nx,
+            Model::Full => nx / 2,
+        };
+        if settings.distortion > 0.0 {
+            distort(&mut coords, &xs, &ys, i_mid, settings.distortion);
+        }
         let mut elements = Vec::with_capacity(nx * ny);
         for j in 0..ny {
             for i in 0..nx {
@@ -73,10 +97,6 @@ impl PlateMesh {
                 Model::Full => clamp(&mut fixed_dofs, node(nx, j)),
             }
         }
-        let i_mid = match settings.model {
-            Model::Half => nx,
-            Model::Full => nx / 2,
-        };
         PlateMesh {
             mesh: Mesh { coords, elements },
             nx,
@@ -128,6 +148,31 @@ impl PlateMesh {
     }
 }
 
+/// Shifts every interior node (off the boundaries and the mid-span line) by up to
+/// `fraction / 2` of the smaller adjacent spacing in each direction, with a fixed
+/// pseudo-random pattern (splitmix64 of the node index), so a distorted mesh is reproducible.
+fn distort(coords: &mut [[f64; 2]], xs: &[f64], ys: &[f64], i_mid: usize, fraction: f64) {
+    let (nx, ny) = (xs.len() - 1, ys.len() - 1);
+    for j in 1..ny {
+        for i in (1..nx).filter(|&i| i != i_mid) {
+            let n = i + j * (nx + 1);
+            let hx = (xs[i + 1] - xs[i]).min(xs[i] - xs[i - 1]);
+            let hy = (ys[j + 1] - ys[j]).min(ys[j] - ys[j - 1]);
+            coords[n][0] += fraction * hx * (unit_random(2 * n as u64) - 0.5);
+            coords[n][1] += fraction * hy * (unit_random(2 * n as u64 + 1) - 0.5);
+        }
+    }
+}
+
+/// A number in [0, 1) from splitmix64 of `seed`.
+fn unit_random(seed: u64) -> f64 {
+    let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
+}
+
 /// Node x-coordinates (m) from the clamped end: uniform, or a geometric progression
 /// whose largest / smallest element length is `grading`, smallest at mid-span.
 fn x_stations(length: f64, nx: usize, grading: f64, model: Model) -> Vec<f64> {
@@ -173,6 +218,7 @@ mod tests {
             model,
             grading,
             hourglass: 0.05,
+            distortion: 0.0,
         }
     }
 
@@ -203,6 +249,27 @@ mod tests {
         }
         assert_eq!(m.mesh.coords[m.mid], [0.1, 0.01]);
         assert!(m.fixed_dofs[2 * 8] && m.fixed_dofs[2 * 8 + 1]);
+    }
+
+    #[test]
+    fn distortion_moves_only_interior_nodes_and_is_reproducible() {
+        let mut s = settings(6, 4, 1.0, Model::Half);
+        let plain = PlateMesh::new(&PLATE, &s);
+        s.distortion = 0.3;
+        let a = PlateMesh::new(&PLATE, &s);
+        let b = PlateMesh::new(&PLATE, &s);
+        assert_eq!(a.mesh.coords, b.mesh.coords);
+        let mut moved = 0;
+        for (n, (p, q)) in plain.mesh.coords.iter().zip(&a.mesh.coords).enumerate() {
+            let (i, j) = (n % 7, n / 7);
+            if i == 0 || i == 6 || j == 0 || j == 4 {
+                assert_eq!(p, q, "boundary or mid-span node {n} moved");
+            } else if p != q {
+                moved += 1;
+                assert!((p[0] - q[0]).abs() <= 0.15 * 0.1 / 6.0 && (p[1] - q[1]).abs() <= 0.15 * 0.005);
+            }
+        }
+        assert_eq!(moved, 15);
     }
 
     #[test]

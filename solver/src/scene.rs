@@ -70,7 +70,7 @@ pub enum HardeningFile {
     Table(Vec<[f64; 2]>),
 }
 
-/// `mesh: {nx, ny, element, model, grading, hourglass}`.
+/// `mesh: {nx, ny, element, model, grading, hourglass, distortion}`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshFile {
@@ -88,6 +88,10 @@ pub struct MeshFile {
     /// Flanagan-Belytschko hourglass stiffness coefficient for `q4-1pt` (default 0.05).
     #[serde(default)]
     pub hourglass: Option<Num>,
+    /// Deterministic random shift of interior nodes, as a fraction of the local element size
+    /// (default 0; for robustness and stability studies).
+    #[serde(default)]
+    pub distortion: Option<Num>,
 }
 
 /// The element formulation.
@@ -297,6 +301,8 @@ pub struct MeshSettings {
     pub model: Model,
     pub grading: f64,
     pub hourglass: f64,
+    /// Interior-node shift as a fraction of the local element size, in [0, 0.4].
+    pub distortion: f64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -647,6 +653,17 @@ impl Validator<'_> {
                 },
             )?,
         };
+        let distortion = match &m.distortion {
+            None => 0.0,
+            Some(d) => self.check(
+                d,
+                "mesh.distortion",
+                Rule {
+                    allowed: "must lie in [0, 0.4] (fraction of the local element size)",
+                    ok: |v| (0.0..=0.4).contains(&v),
+                },
+            )?,
+        };
         Ok(MeshSettings {
             nx: nx as usize,
             ny: ny as usize,
@@ -654,6 +671,7 @@ impl Validator<'_> {
             model: m.model,
             grading,
             hourglass,
+            distortion,
         })
     }
 

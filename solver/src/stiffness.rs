@@ -91,6 +91,7 @@ mod tests {
             model: Model::Half,
             grading: 3.0,
             hourglass: 0.05,
+            distortion: 0.0,
         };
         let mesh = PlateMesh::new(&plate, &settings);
         let elastic = Elastic::new(207e9, 0.3);

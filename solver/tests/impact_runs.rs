@@ -169,3 +169,31 @@ fn a_pulse_delivers_its_impulse_and_balances_energy() {
         assert!(!o.history.columns.iter().any(|c| c == absent), "{absent}");
     }
 }
+
+/// Above the stability limit the run must stop with a clear error within a bounded number
+/// of steps, not write garbage (the element bound is conservative: 1.3 x may still be
+/// stable on some meshes, so go well beyond it).
+#[test]
+fn an_unstable_step_stops_the_run_with_a_clear_error() {
+    let mut scene = small(ELASTIC);
+    scene.time.dt = impact_solver::scene::DtChoice::Cfl(3.0);
+    scene.time.allow_unstable_dt = true;
+    let err = simulate(&scene, &mut Quiet).unwrap_err().to_string();
+    assert!(err.contains("run stopped at step"), "{err}");
+    assert!(err.contains("unstable") || err.contains("inverted"), "{err}");
+    assert!(err.contains("3.000 of the stable estimate"), "{err}");
+    let step: u64 = err["run stopped at step ".len()..].split(' ').next().unwrap().parse().unwrap();
+    assert!(step < 2000, "stopped only at step {step}");
+}
+
+#[test]
+fn a_distorted_mesh_still_conserves_momentum_and_energy() {
+    for element in ELEMENTS {
+        let mut scene = small(PLASTIC);
+        scene.mesh.element = element;
+        scene.mesh.distortion = 0.3;
+        let s = run(&scene).summary;
+        assert!(s.impulse_momentum_error.unwrap() < 1e-9);
+        assert!(s.max_energy_balance_error < 5e-3, "{element:?}: {:e}", s.max_energy_balance_error);
+    }
+}
