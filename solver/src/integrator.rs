@@ -483,7 +483,9 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 alpha = imp.displacement - delta_c;
                 f1
             }
-            _ => pulse_force(t + dt),
+            // t_{n+1} = (n + 1) dt exactly as the next step will compute it (t + dt can round
+            // differently and misplace the end of the pulse).
+            _ => pulse_force((n + 1) as f64 * dt),
         };
         if pulse.is_some() {
             let top_after = u[2 * mesh.top + 1];

@@ -197,3 +197,15 @@ fn a_distorted_mesh_still_conserves_momentum_and_energy() {
         assert!(s.max_energy_balance_error < 5e-3, "{element:?}: {:e}", s.max_energy_balance_error);
     }
 }
+
+/// Regression (found by the independent Python FE): with a dt dividing the pulse duration,
+/// `t + dt` rounded below the end of the pulse and counted one step of force that was never
+/// applied. Reference (analytical): the trapezoidal impulse of a force applied at steps
+/// 0..N-1 is `F (N - 1/2) dt`.
+#[test]
+fn the_pulse_ends_where_the_force_stops_being_applied() {
+    let text = include_str!("scenes/pulse-dt-edge.yaml");
+    let s = run(&Scene::from_yaml(text, Path::new("pulse-dt-edge.yaml")).unwrap()).summary;
+    let expected = 86.5e3 * 7999.5 * 1.25e-7;
+    assert!((s.impulse - expected).abs() < 1e-9 * expected, "{} vs {expected}", s.impulse);
+}
