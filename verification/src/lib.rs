@@ -1,1 +1,12 @@
+//! The verification harness of the impact solver: cases (YAML) with requirements, scenes and
+//! checks; the lint; the parallel runner and its matrix, results.json and JUnit output; the
+//! V&V report. The `impact` binary (`src/main.rs`) is its command line.
 
+pub mod builtins;
+pub mod case;
+pub mod check;
+pub mod jobs;
+pub mod lint;
+pub mod report;
+pub mod runner;
+pub mod snapshot;

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use impact_verification::runner::{self, Options, Repo};
 
 #[derive(Parser)]
 #[command(name = "impact", version, about = "Explicit impact solver (Dokko & Kim 2004) and its verification")]
@@ -26,6 +27,45 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Run the verification matrix: prints suite/case/check/status, writes results.json,
+    /// junit.xml and matrix.txt to --out; exits 1 when any check fails.
+    Verify {
+        /// Suites (folder names under verification/cases), case ids or suite/case; default all.
+        selectors: Vec<String>,
+        /// Only checks whose suite/case/check name contains this text.
+        #[arg(long)]
+        filter: Option<String>,
+        /// Parallel runs (default: the number of cores).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Output folder.
+        #[arg(long, default_value = "out/verify")]
+        out: PathBuf,
+        /// Leave out the cases marked heavy (what `cargo test` runs).
+        #[arg(long)]
+        light: bool,
+        /// Also write the V&V report (index.html, report.md) to --out.
+        #[arg(long)]
+        report: bool,
+        /// Repository root (default: found from the current folder).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
+    /// reasons, provenance of reference files.
+    Lint {
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// Write the V&V report (index.html, report.md) from a verify output folder.
+    Report {
+        /// Folder written by `impact verify`.
+        #[arg(long)]
+        from: PathBuf,
+        /// Where to write the report (default: the same folder).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -46,6 +86,127 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Command::Verify {
+            selectors,
+            filter,
+            jobs,
+            out,
+            light,
+            report,
+            root,
+        } => verify(selectors, filter, jobs, out, light, report, root),
+        Command::Lint { root } => lint(root),
+        Command::Report { from, out } => {
+            let out = out.unwrap_or_else(|| from.clone());
+            match impact_verification::report::write_report(&from, &out) {
+                Ok(files) => {
+                    for f in files {
+                        println!("wrote {}", f.display());
+                    }
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(2)
+                }
+            }
+        }
+    }
+}
+
+fn repo(root: Option<PathBuf>) -> Result<Repo, ExitCode> {
+    let found = match root {
+        Some(r) => Repo::find(&r),
+        None => std::env::current_dir().ok().and_then(|d| Repo::find(&d)),
+    };
+    found.ok_or_else(|| {
+        eprintln!("error: no verification/cases folder here or above (use --root)");
+        ExitCode::from(2)
+    })
+}
+
+fn lint(root: Option<PathBuf>) -> ExitCode {
+    let repo = match repo(root) {
+        Ok(r) => r,
+        Err(c) => return c,
+    };
+    let (cases, errors) = impact_verification::case::load_cases(&repo.cases_dir());
+    let findings = impact_verification::lint::lint(&repo, &cases);
+    for e in &errors {
+        eprintln!("error: {e}");
+    }
+    for f in &findings {
+        eprintln!("lint: {f}");
+    }
+    let checks: usize = cases.iter().map(|c| c.file.checks.len()).sum();
+    if errors.is_empty() && findings.is_empty() {
+        println!("lint: {} cases, {checks} checks: clean", cases.len());
+        ExitCode::SUCCESS
+    } else {
+        eprintln!("lint: {} unreadable case file(s), {} finding(s)", errors.len(), findings.len());
+        ExitCode::from(2)
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn verify(
+    selectors: Vec<String>,
+    filter: Option<String>,
+    jobs: Option<usize>,
+    out: PathBuf,
+    light: bool,
+    report: bool,
+    root: Option<PathBuf>,
+) -> ExitCode {
+    let repo = match repo(root) {
+        Ok(r) => r,
+        Err(c) => return c,
+    };
+    let started = std::time::Instant::now();
+    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let opts = Options {
+        selectors,
+        filter,
+        jobs,
+        include_heavy: !light,
+        progress: std::io::stderr().is_terminal(),
+    };
+    let outcome = match runner::verify(&repo, &opts) {
+        Ok(o) => o,
+        Err(problems) => {
+            for p in problems {
+                eprintln!("error: {p}");
+            }
+            return ExitCode::from(2);
+        }
+    };
+    print!("{}", runner::matrix_text(&outcome.matrix));
+    print!("{}", runner::summary_text(&outcome.matrix));
+    let wall = started.elapsed().as_secs_f64();
+    if let Err(e) = runner::write_outputs(&outcome, &out)
+        .and_then(|_| impact_verification::report::write_environment(&repo, &out, wall, jobs))
+    {
+        eprintln!("error: cannot write {}: {e}", out.display());
+        return ExitCode::from(2);
+    }
+    println!("wrote {}/results.json, junit.xml, matrix.txt ({wall:.1} s, {jobs} jobs)", out.display());
+    if report {
+        match impact_verification::report::write_report(&out, &out) {
+            Ok(files) => {
+                for f in files {
+                    println!("wrote {}", f.display());
+                }
+            }
+            Err(e) => {
+                eprintln!("error: report: {e:#}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    if outcome.matrix.counts.fail > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
     }
 }
 

@@ -1,0 +1,547 @@
+//! `case.yaml`: one verification case (a folder under `verification/cases/<suite>/<case>/`)
+//! with its requirement, its scenes and its checks.
+//!
+//! [`CaseFile`] mirrors the YAML as written: unknown keys, wrong types and duplicate keys are
+//! refused by the parser with file, line and column. Fields that the lint must be able to
+//! report as missing (a reference kind, a tolerance reason, a skip reason) are optional here
+//! and enforced by [`crate::lint`], which also names the line and column.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use serde_saphyr::Spanned;
+
+/// Where something is written: `file:line:column` (line 0 = file only).
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+pub struct Loc {
+    pub file: PathBuf,
+    pub line: u64,
+    pub column: u64,
+}
+
+impl fmt::Display for Loc {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}", self.file.display())
+        } else {
+            write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
+        }
+    }
+}
+
+impl Loc {
+    pub fn file(path: &Path) -> Loc {
+        Loc {
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+        }
+    }
+    pub fn of<T>(path: &Path, s: &Spanned<T>) -> Loc {
+        Loc {
+            file: path.to_path_buf(),
+            line: s.referenced.line(),
+            column: s.referenced.column(),
+        }
+    }
+}
+
+/// A case file that cannot be read or parsed.
+#[derive(Debug, thiserror::Error)]
+pub enum CaseError {
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{loc}: {message}")]
+    Parse { loc: Loc, message: String },
+}
+
+/// The categories of the V&V matrix (ASME V&V 10 / Oberkampf & Roy wording).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Deserialize, serde::Serialize)]
+pub enum Category {
+    #[serde(rename = "code verification")]
+    CodeVerification,
+    #[serde(rename = "solution verification")]
+    SolutionVerification,
+    #[serde(rename = "code-to-code")]
+    CodeToCode,
+    #[serde(rename = "literature")]
+    Literature,
+    #[serde(rename = "regression")]
+    Regression,
+}
+
+impl Category {
+    pub fn name(self) -> &'static str {
+        match self {
+            Category::CodeVerification => "code verification",
+            Category::SolutionVerification => "solution verification",
+            Category::CodeToCode => "code-to-code",
+            Category::Literature => "literature",
+            Category::Regression => "regression",
+        }
+    }
+}
+
+/// What a reference value is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+pub enum RefKind {
+    /// A closed form or an exact property of the discrete method (computed independently).
+    #[serde(rename = "analytical")]
+    Analytical,
+    /// Another code's output (the independent Python FE).
+    #[serde(rename = "independent code")]
+    IndependentCode,
+    /// A number printed in Dokko & Kim (2004).
+    #[serde(rename = "paper")]
+    Paper,
+    /// A conservation law or identity that must hold in every run.
+    #[serde(rename = "invariant")]
+    Invariant,
+    /// A pinned earlier result of this code.
+    #[serde(rename = "regression")]
+    Regression,
+    /// A bound set by the requirement itself (e.g. a GCI below 5 %).
+    #[serde(rename = "acceptance")]
+    Acceptance,
+}
+
+impl RefKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            RefKind::Analytical => "analytical",
+            RefKind::IndependentCode => "independent code",
+            RefKind::Paper => "paper",
+            RefKind::Invariant => "invariant",
+            RefKind::Regression => "regression",
+            RefKind::Acceptance => "acceptance",
+        }
+    }
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    pub id: Spanned<String>,
+    pub title: String,
+    pub requirement: RequirementFile,
+    pub category: Category,
+    #[serde(default)]
+    pub heavy: bool,
+    /// The reference problem in words (for the report).
+    #[serde(default)]
+    pub problem: Option<String>,
+    /// Whole-case skip with its reason.
+    #[serde(default)]
+    pub skip: Option<Spanned<SkipFile>>,
+    #[serde(default)]
+    pub scenes: BTreeMap<String, Spanned<SceneSpec>>,
+    #[serde(default)]
+    pub series: BTreeMap<String, Spanned<SeriesSpec>>,
+    pub checks: Vec<Spanned<CheckFile>>,
+    /// What `cargo test` pins with insta (histories at fixed times, summaries).
+    #[serde(default)]
+    pub snapshot: Option<SnapshotSpec>,
+    /// Plots for the report.
+    #[serde(default)]
+    pub plots: Vec<PlotSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RequirementFile {
+    pub id: Spanned<String>,
+    /// "The solver shall ..."
+    pub text: Spanned<String>,
+}
+
+/// `skip: "reason"` (or `skip: true`, which the lint refuses: a skip needs a reason).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum SkipFile {
+    Reason(String),
+    Flag(bool),
+}
+
+impl SkipFile {
+    pub fn reason(&self) -> Option<&str> {
+        match self {
+            SkipFile::Reason(r) if !r.trim().is_empty() => Some(r.trim()),
+            _ => None,
+        }
+    }
+    pub fn is_skip(&self) -> bool {
+        !matches!(self, SkipFile::Flag(false))
+    }
+}
+
+/// A scene: a file in the case folder (with optional overrides) or a builtin computation.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    #[serde(default)]
+    pub file: Option<String>,
+    /// Dotted overrides applied to the scene file, e.g. `impactor.velocity: 5.0`.
+    #[serde(default)]
+    pub set: BTreeMap<String, serde_json::Value>,
+    /// Record field frames and the stress / flow-stress ratio (slower).
+    #[serde(default)]
+    pub stress_bound: bool,
+    /// The run is expected to stop with an error: the job then yields the metrics
+    /// `run_failed` (1/0) and `error_mentions_<word>` for each word of `expect_error`.
+    #[serde(default)]
+    pub expect_error: Vec<String>,
+    /// A computation of the harness itself (contact-law and element unit checks, closed forms).
+    #[serde(default)]
+    pub builtin: Option<String>,
+    #[serde(default)]
+    pub params: BTreeMap<String, serde_json::Value>,
+}
+
+/// A refinement series of a scene: `mesh` multiplies nx and ny, `dt` divides the step.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeriesSpec {
+    pub scene: String,
+    pub refine: Refine,
+    /// Refinement factors relative to the base scene, coarse to fine, constant ratio.
+    pub levels: Vec<f64>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Refine {
+    Mesh,
+    Dt,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckFile {
+    pub id: String,
+    pub title: String,
+    pub measure: Spanned<MeasureFile>,
+    #[serde(default)]
+    pub reference: Option<Spanned<ReferenceFile>>,
+    #[serde(default)]
+    pub compare: Compare,
+    #[serde(default)]
+    pub tolerance: Option<Spanned<ToleranceFile>>,
+    #[serde(default)]
+    pub skip: Option<Spanned<SkipFile>>,
+    /// A failure that is known and tracked: still FAIL in the matrix (and `impact verify`
+    /// exits non-zero), but `cargo test` accepts it; it fails the test when it starts passing.
+    #[serde(default)]
+    pub known_failure: Option<String>,
+}
+
+/// How the computed value must relate to the reference.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Compare {
+    /// |computed - reference| within the tolerance.
+    #[default]
+    Within,
+    /// computed <= reference + tolerance.
+    AtMost,
+    /// computed >= reference - tolerance.
+    AtLeast,
+}
+
+/// One measured value (exactly one of the selectors).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeasureFile {
+    /// The scene (or builtin) the value comes from.
+    #[serde(default)]
+    pub scene: Option<String>,
+    /// A summary key (`impulse_Ns`, `max_von_mises_Pa.A`, ...), a derived metric, or a builtin's metric.
+    #[serde(default)]
+    pub metric: Option<String>,
+    /// A history value at a time (linear interpolation between rows).
+    #[serde(default)]
+    pub at: Option<AtFile>,
+    /// A reduction of a history column over a window.
+    #[serde(default)]
+    pub extreme: Option<ExtremeFile>,
+    /// A norm of the difference to the reference history.
+    #[serde(default)]
+    pub error: Option<ErrorFile>,
+    /// numerator / denominator.
+    #[serde(default)]
+    pub ratio: Option<Vec<MeasureFile>>,
+    /// Observed order of convergence over a series.
+    #[serde(default)]
+    pub order: Option<SeriesQuantity>,
+    /// Grid convergence index of the finest level (Roache, Fs = 1.25), relative.
+    #[serde(default)]
+    pub gci: Option<SeriesQuantity>,
+    /// Scale applied to the measured value (unit conversion).
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Take the absolute value.
+    #[serde(default)]
+    pub abs: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtFile {
+    pub column: String,
+    pub time: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reduce {
+    Max,
+    Min,
+    AbsMax,
+    Mean,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExtremeFile {
+    pub column: String,
+    pub reduce: Reduce,
+    #[serde(default)]
+    pub window: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Norm {
+    L2,
+    Linf,
+}
+
+/// `error: {column, norm, window}`: `norm(computed - reference) / max |reference|` over the
+/// window, the computed history interpolated at the reference times.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorFile {
+    pub column: String,
+    pub norm: Norm,
+    #[serde(default)]
+    pub window: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SeriesQuantity {
+    pub series: String,
+    pub metric: String,
+}
+
+/// The reference of a check: its kind, where the value comes from, and a one-line source.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceFile {
+    #[serde(default)]
+    pub kind: Option<RefKind>,
+    /// A literal (for closed forms: 0 residual, 1 ratio, a bound) with `source` saying why.
+    #[serde(default)]
+    pub value: Option<f64>,
+    /// A cell of a CSV table under reference-data/.
+    #[serde(default)]
+    pub table: Option<TableRef>,
+    /// A value computed in this run by independent means (a builtin's closed form, or an
+    /// identity from other outputs of the same scene).
+    #[serde(default)]
+    pub metric: Option<MeasureFile>,
+    /// A reference history (CSV under reference-data/ or a builtin's history).
+    #[serde(default)]
+    pub history: Option<HistoryRef>,
+    /// A JSON value under reference-data/ (e.g. the independent code's summary.json).
+    #[serde(default)]
+    pub json: Option<JsonRef>,
+    /// Multiplies the reference value (unit conversion, e.g. 1e-3 for mm -> m).
+    #[serde(default)]
+    pub scale: Option<f64>,
+    /// Where the reference comes from, in one line.
+    #[serde(default)]
+    pub source: Option<String>,
+    /// The reference does not exist yet: the check is a SKIP with this reason, never a pass.
+    #[serde(default)]
+    pub pending: Option<String>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TableRef {
+    /// Path from the repository root, under reference-data/.
+    pub file: String,
+    /// `{column: value}` selecting the row (string comparison on the printed value).
+    pub row: BTreeMap<String, String>,
+    pub column: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HistoryRef {
+    /// A CSV under reference-data/ (columns `time_s` and `column`) ...
+    #[serde(default)]
+    pub file: Option<String>,
+    /// ... or the history of a scene or builtin of this case.
+    #[serde(default)]
+    pub scene: Option<String>,
+    pub column: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JsonRef {
+    pub file: String,
+    /// Dotted key.
+    pub key: String,
+}
+
+/// `relative` and/or `absolute`; values with magnitude below `floor` count as zero (both
+/// the computed and the reference value); `reason` says where the numbers come from.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ToleranceFile {
+    #[serde(default)]
+    pub relative: Option<f64>,
+    #[serde(default)]
+    pub absolute: Option<f64>,
+    #[serde(default)]
+    pub floor: Option<f64>,
+    #[serde(default)]
+    pub reason: Option<String>,
+}
+
+/// What the snapshot test pins for this case.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SnapshotSpec {
+    /// Scenes whose summaries and histories are pinned.
+    pub scenes: Vec<String>,
+    /// History columns, sampled at `times`.
+    #[serde(default)]
+    pub columns: Vec<String>,
+    #[serde(default)]
+    pub times: Vec<f64>,
+    /// Significant digits (default 6).
+    #[serde(default)]
+    pub digits: Option<usize>,
+}
+
+/// A history plot for the report: columns of scenes over time, references overlaid.
+#[derive(Debug, Clone, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlotSpec {
+    pub title: String,
+    /// One column of several scenes ...
+    #[serde(default)]
+    pub column: Option<String>,
+    /// ... or several columns of each scene (e.g. the energy terms).
+    #[serde(default)]
+    pub columns: Vec<String>,
+    pub scenes: Vec<String>,
+    /// Reference histories overlaid: scenes (builtins) or CSV files with the same column.
+    #[serde(default)]
+    pub references: Vec<String>,
+    #[serde(default)]
+    pub scale: Option<f64>,
+    #[serde(default)]
+    pub unit: Option<String>,
+}
+
+/// A parsed case with where it lives.
+#[derive(Debug)]
+pub struct Case {
+    /// `<suite>/<case>` folder name pair.
+    pub suite: String,
+    pub name: String,
+    pub dir: PathBuf,
+    pub path: PathBuf,
+    pub file: CaseFile,
+}
+
+impl Case {
+    pub fn id(&self) -> &str {
+        &self.file.id.value
+    }
+    pub fn loc<T>(&self, s: &Spanned<T>) -> Loc {
+        Loc::of(&self.path, s)
+    }
+}
+
+/// Parses a case.yaml; `path` names it in messages.
+pub fn parse_case(text: &str, path: &Path) -> Result<CaseFile, CaseError> {
+    serde_saphyr::from_str::<CaseFile>(text).map_err(|e| {
+        let (line, column) = e
+            .location()
+            .map(|l| (l.line(), l.column()))
+            .unwrap_or((0, 0));
+        let message = e.to_string();
+        let first = message.lines().next().unwrap_or(&message).trim();
+        let message = match first.find(" at line ") {
+            Some(p) => first[..p].to_string(),
+            None => first.to_string(),
+        };
+        CaseError::Parse {
+            loc: Loc {
+                file: path.to_path_buf(),
+                line,
+                column,
+            },
+            message,
+        }
+    })
+}
+
+/// Reads `verification/cases/<suite>/<case>/case.yaml` files, sorted by suite then case.
+/// Returns the cases that parse and the errors of those that do not.
+pub fn load_cases(cases_dir: &Path) -> (Vec<Case>, Vec<CaseError>) {
+    let mut cases = Vec::new();
+    let mut errors = Vec::new();
+    for suite_dir in sorted_dirs(cases_dir) {
+        for case_dir in sorted_dirs(&suite_dir) {
+            let path = case_dir.join("case.yaml");
+            if !path.is_file() {
+                continue;
+            }
+            let text = match std::fs::read_to_string(&path) {
+                Ok(t) => t,
+                Err(source) => {
+                    errors.push(CaseError::Read { path, source });
+                    continue;
+                }
+            };
+            match parse_case(&text, &path) {
+                Ok(file) => cases.push(Case {
+                    suite: file_name(&suite_dir),
+                    name: file_name(&case_dir),
+                    dir: case_dir.clone(),
+                    path,
+                    file,
+                }),
+                Err(e) => errors.push(e),
+            }
+        }
+    }
+    (cases, errors)
+}
+
+fn file_name(p: &Path) -> String {
+    p.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()
+}
+
+pub fn sorted_dirs(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.is_dir())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}

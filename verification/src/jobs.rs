@@ -1,0 +1,494 @@
+//! Jobs: the scenes and builtin computations the checks read. A scene shared by several
+//! checks (or several cases: identical scenes are recognised by content) runs once.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+use impact_solver::integrator::{FieldFrame, Observer};
+use impact_solver::material::FlowCurve;
+use impact_solver::scene::{
+    ContactLawChoice, DtChoice, ElementKind, End, Load, MidSpanNode, Model, Scene,
+};
+use impact_solver::History;
+use serde_json::Value;
+
+use crate::case::{Case, Loc, Refine, SceneSpec};
+
+/// Summary keys that are wall-clock times: never compared, never pinned.
+pub const TIMING_KEYS: [&str; 4] = ["wall_time_s", "setup_time_s", "loop_time_s", "ns_per_element_step"];
+
+/// What a job produced: named scalars, histories, and the modelling for the report.
+#[derive(Debug, Clone, Default)]
+pub struct RunData {
+    pub metrics: BTreeMap<String, f64>,
+    /// Histories by name; a scene run has one named "" (its history.csv).
+    pub histories: BTreeMap<String, History>,
+    /// Modelling description (mesh, element, dt, contact law, ...).
+    pub info: BTreeMap<String, String>,
+    /// summary.json without wall times (scene runs only).
+    pub summary: Option<Value>,
+}
+
+impl RunData {
+    pub fn history(&self) -> Option<&History> {
+        self.histories.get("")
+    }
+}
+
+pub type JobResult = Result<Arc<RunData>, String>;
+
+/// A unit of work.
+#[derive(Debug, Clone)]
+pub enum Job {
+    Scene {
+        scene: Box<Scene>,
+        stress_bound: bool,
+        /// Words the error message must contain (empty: the run must succeed).
+        expect_error: Vec<String>,
+    },
+    Builtin { name: String, params: BTreeMap<String, Value> },
+}
+
+impl Job {
+    /// Content key: identical jobs of different cases run once.
+    pub fn key(&self) -> String {
+        match self {
+            Job::Scene {
+                scene,
+                stress_bound,
+                expect_error,
+            } => {
+                let mut s = (**scene).clone();
+                s.source = Default::default();
+                s.time.dt_location.file = Default::default();
+                s.time.dt_location.line = 0;
+                s.time.dt_location.column = 0;
+                s.title = None;
+                format!("scene {stress_bound} {expect_error:?} {s:?}")
+            }
+            Job::Builtin { name, params } => format!("builtin {name} {params:?}"),
+        }
+    }
+
+    /// A rough cost for scheduling (largest first), element-steps.
+    pub fn cost(&self) -> f64 {
+        match self {
+            Job::Scene { scene, .. } => {
+                let n = (scene.mesh.nx * scene.mesh.ny) as f64;
+                let end = match scene.time.end {
+                    End::At(t) => t,
+                    End::AfterContact { limit, .. } => limit.min(3e-3),
+                };
+                let h = (scene.plate.thickness / scene.mesh.ny as f64)
+                    .min(0.5 * scene.plate.length / scene.mesh.nx as f64);
+                let dt = match scene.time.dt {
+                    DtChoice::Cfl(c) => c * h / 6000.0,
+                    DtChoice::Fixed(d) => d,
+                };
+                n * end / dt
+            }
+            Job::Builtin { .. } => 1e5,
+        }
+    }
+
+    pub fn run(&self) -> JobResult {
+        match self {
+            Job::Scene {
+                scene,
+                stress_bound,
+                expect_error,
+            } if !expect_error.is_empty() => {
+                let _ = stress_bound;
+                let mut metrics = BTreeMap::new();
+                let (failed, message) = match impact_solver::simulate(scene, &mut impact_solver::Quiet) {
+                    Ok(_) => (0.0, String::new()),
+                    Err(e) => (1.0, e.to_string()),
+                };
+                metrics.insert("run_failed".to_string(), failed);
+                for w in expect_error {
+                    let hit = message.to_lowercase().contains(&w.to_lowercase());
+                    metrics.insert(format!("error_mentions_{w}"), if hit { 1.0 } else { 0.0 });
+                }
+                let mut info = BTreeMap::new();
+                info.insert("expected error".to_string(), message);
+                Ok(Arc::new(RunData {
+                    metrics,
+                    info,
+                    ..Default::default()
+                }))
+            }
+            Job::Scene {
+                scene, stress_bound, ..
+            } => run_scene(scene, *stress_bound).map(Arc::new),
+            Job::Builtin { name, params } => crate::builtins::run(name, params).map(Arc::new),
+        }
+    }
+}
+
+/// Records the largest `von Mises / flow stress(eqps)` over elements and field frames.
+struct StressBound {
+    flow: Option<FlowCurve>,
+    yield_stress: f64,
+    max_ratio: f64,
+    max_eqps: f64,
+}
+
+impl Observer for StressBound {
+    fn wants_fields(&self) -> bool {
+        true
+    }
+    fn fields(&mut self, frame: FieldFrame) -> impact_solver::Result<()> {
+        for (vm, k) in frame.von_mises.iter().zip(&frame.eqps) {
+            let flow = self.flow.as_ref().map_or(self.yield_stress, |f| f.flow_stress(*k));
+            self.max_ratio = self.max_ratio.max(vm / flow);
+            self.max_eqps = self.max_eqps.max(*k);
+        }
+        Ok(())
+    }
+}
+
+fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
+    let mut observer_bound = None;
+    let outcome = if stress_bound {
+        let p = scene
+            .material
+            .plasticity
+            .as_ref()
+            .ok_or("stress_bound needs a plastic material")?;
+        let mut s = scene.clone();
+        if s.output.fields_every.is_none() {
+            s.output.fields_every = Some(2e-6);
+        }
+        let mut obs = StressBound {
+            flow: Some(FlowCurve::new(p.yield_stress, &p.hardening, s.material.youngs_modulus)),
+            yield_stress: p.yield_stress,
+            max_ratio: 0.0,
+            max_eqps: 0.0,
+        };
+        let out = impact_solver::simulate(&s, &mut obs).map_err(|e| e.to_string())?;
+        observer_bound = Some((obs.max_ratio, obs.max_eqps));
+        out
+    } else {
+        impact_solver::simulate(scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?
+    };
+    let mut summary = serde_json::to_value(&outcome.summary).map_err(|e| e.to_string())?;
+    if let Value::Object(map) = &mut summary {
+        for k in TIMING_KEYS {
+            map.remove(k);
+        }
+    }
+    let mut metrics = BTreeMap::new();
+    flatten("", &summary, &mut metrics);
+    let s = &outcome.summary;
+    metrics.insert("contact_intervals_count".into(), s.contact_intervals.len() as f64);
+    let e0 = s.initial_energy.total();
+    metrics.insert("initial_total_energy_J".into(), e0);
+    metrics.insert("final_total_energy_J".into(), s.final_energy.total());
+    if let (Some(i), Some(vf)) = (scene.impactor(), s.final_impactor_velocity) {
+        metrics.insert("momentum_change_Ns".into(), i.mass * (i.velocity - vf));
+        metrics.insert("final_momentum_kgmps".into(), i.mass * vf);
+        metrics.insert("initial_kinetic_J".into(), 0.5 * i.mass * i.velocity * i.velocity);
+    }
+    if let Some((ratio, eqps)) = observer_bound {
+        metrics.insert("stress_flow_ratio_max".into(), ratio);
+        metrics.insert("eqps_max".into(), eqps);
+    }
+    let mut histories = BTreeMap::new();
+    histories.insert(String::new(), outcome.history);
+    Ok(RunData {
+        metrics,
+        histories,
+        info: scene_info(scene, s),
+        summary: Some(summary),
+    })
+}
+
+/// Numeric leaves of a JSON value under dotted keys.
+fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
+    match v {
+        Value::Number(n) => {
+            if let Some(x) = n.as_f64() {
+                out.insert(prefix.to_string(), x);
+            }
+        }
+        Value::Object(m) => {
+            for (k, v) in m {
+                let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                flatten(&key, v, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The modelling of a run, in words, for the report.
+pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String, String> {
+    let mut m = BTreeMap::new();
+    let p = &scene.plate;
+    m.insert("plate".into(), format!("L = {} m, W = {} m, h = {} m", p.length, p.width, p.thickness));
+    let mat = &scene.material;
+    let plastic = match &mat.plasticity {
+        None => "elastic".to_string(),
+        Some(pl) => format!("von Mises, yield {:.4e} Pa, hardening {:?}", pl.yield_stress, pl.hardening),
+    };
+    m.insert(
+        "material".into(),
+        format!("rho = {} kg/m3, E = {:e} Pa, nu = {}, {plastic}", mat.density, mat.youngs_modulus, mat.poisson_ratio),
+    );
+    let ms = &scene.mesh;
+    m.insert(
+        "mesh".into(),
+        format!(
+            "{} x {} {}, {} model, grading {}",
+            ms.nx,
+            ms.ny,
+            ms.element.name(),
+            match ms.model {
+                Model::Half => "half",
+                Model::Full => "full",
+            },
+            ms.grading
+        ),
+    );
+    m.insert("dt".into(), format!("{:.4e} s ({:.3} of stable {:.4e} s)", s.dt, s.cfl, s.dt_critical));
+    m.insert("contact law".into(), s.contact_law.clone());
+    m.insert(
+        "load".into(),
+        match &scene.load {
+            Load::Pulse(pu) => format!("rectangular pulse {} N for {} s on the top mid-span node", pu.force, pu.duration),
+            Load::Impactor(i) => format!(
+                "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, datum {}, force on {}",
+                i.mass,
+                i.velocity,
+                i.nose_radius,
+                node_name(i.indentation_datum),
+                node_name(i.force_node)
+            ),
+        },
+    );
+    m.insert(
+        "end".into(),
+        match scene.time.end {
+            End::At(t) => format!("t = {t} s"),
+            End::AfterContact { after, limit } => format!("{after} s after the last contact (limit {limit} s)"),
+        },
+    );
+    m
+}
+
+fn node_name(n: MidSpanNode) -> &'static str {
+    match n {
+        MidSpanNode::MidPlane => "mid-plane",
+        MidSpanNode::TopSurface => "top-surface",
+    }
+}
+
+/// A case's scenes resolved to jobs, by scene name (series levels are `SERIES@LEVEL`).
+pub fn case_jobs(case: &Case) -> Result<BTreeMap<String, Job>, String> {
+    let mut jobs = BTreeMap::new();
+    for (name, spec) in &case.file.scenes {
+        let loc = case.loc(spec);
+        jobs.insert(name.clone(), scene_job(&case.dir, &spec.value, &loc)?);
+    }
+    for (name, series) in &case.file.series {
+        let loc = case.loc(series);
+        let s = &series.value;
+        let base = match jobs.get(&s.scene) {
+            Some(Job::Scene {
+                scene, stress_bound, ..
+            }) => ((**scene).clone(), *stress_bound),
+            _ => return Err(format!("{loc}: series {name}: scene {:?} is not a scene of this case", s.scene)),
+        };
+        for level in &s.levels {
+            let scene = refine(&base.0, s.refine, *level).map_err(|e| format!("{loc}: series {name}: {e}"))?;
+            jobs.insert(
+                series_scene_name(name, *level),
+                Job::Scene {
+                    scene: Box::new(scene),
+                    stress_bound: base.1,
+                    expect_error: Vec::new(),
+                },
+            );
+        }
+    }
+    Ok(jobs)
+}
+
+pub fn series_scene_name(series: &str, level: f64) -> String {
+    format!("{series}@{level}")
+}
+
+fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
+    match (&spec.file, &spec.builtin) {
+        (Some(file), None) => {
+            let path = dir.join(file);
+            let mut scene = Scene::from_file(&path).map_err(|e| format!("{loc}: scene: {e}"))?;
+            for (key, value) in &spec.set {
+                apply_override(&mut scene, key, value).map_err(|e| format!("{loc}: set {key}: {e}"))?;
+            }
+            Ok(Job::Scene {
+                scene: Box::new(scene),
+                stress_bound: spec.stress_bound,
+                expect_error: spec.expect_error.clone(),
+            })
+        }
+        (None, Some(name)) => {
+            if !crate::builtins::NAMES.contains(&name.as_str()) {
+                return Err(format!(
+                    "{loc}: unknown builtin {name:?} (known: {})",
+                    crate::builtins::NAMES.join(", ")
+                ));
+            }
+            Ok(Job::Builtin {
+                name: name.clone(),
+                params: spec.params.clone(),
+            })
+        }
+        _ => Err(format!("{loc}: a scene needs exactly one of `file` or `builtin`")),
+    }
+}
+
+fn num(v: &Value) -> Result<f64, String> {
+    v.as_f64().filter(|x| x.is_finite()).ok_or_else(|| format!("{v} is not a finite number"))
+}
+
+fn positive(v: &Value) -> Result<f64, String> {
+    let x = num(v)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err(format!("{x} must be > 0"))
+    }
+}
+
+fn count(v: &Value) -> Result<usize, String> {
+    v.as_u64().filter(|&n| n > 0).map(|n| n as usize).ok_or_else(|| format!("{v} is not a positive integer"))
+}
+
+fn text(v: &Value) -> Result<&str, String> {
+    v.as_str().ok_or_else(|| format!("{v} is not a string"))
+}
+
+fn mid_span(v: &Value) -> Result<MidSpanNode, String> {
+    match text(v)? {
+        "mid-plane" => Ok(MidSpanNode::MidPlane),
+        "top-surface" => Ok(MidSpanNode::TopSurface),
+        o => Err(format!("{o:?}: expected mid-plane or top-surface")),
+    }
+}
+
+/// Applies one dotted override to a validated scene.
+pub fn apply_override(scene: &mut Scene, key: &str, v: &Value) -> Result<(), String> {
+    let limit_of = |end: End| match end {
+        End::AfterContact { limit, .. } => limit,
+        End::At(_) => 0.05,
+    };
+    match key {
+        "plate.length" => scene.plate.length = positive(v)?,
+        "plate.width" => scene.plate.width = positive(v)?,
+        "plate.thickness" => scene.plate.thickness = positive(v)?,
+        "material.plasticity" if v.is_null() => scene.material.plasticity = None,
+        "material.youngs_modulus" => scene.material.youngs_modulus = positive(v)?,
+        "material.poisson_ratio" => scene.material.poisson_ratio = num(v)?,
+        "mesh.nx" => scene.mesh.nx = count(v)?,
+        "mesh.ny" => {
+            let ny = count(v)?;
+            if ny % 2 != 0 {
+                return Err("ny must be even".into());
+            }
+            scene.mesh.ny = ny
+        }
+        "mesh.grading" => scene.mesh.grading = positive(v)?,
+        "mesh.element" => {
+            scene.mesh.element = match text(v)? {
+                "q4-full" => ElementKind::Q4Full,
+                "q4-sri" => ElementKind::Q4Sri,
+                "q4-1pt" => ElementKind::Q4OnePoint,
+                o => return Err(format!("{o:?}: expected q4-full, q4-sri or q4-1pt")),
+            }
+        }
+        "mesh.model" => {
+            scene.mesh.model = match text(v)? {
+                "half" => Model::Half,
+                "full" => Model::Full,
+                o => return Err(format!("{o:?}: expected half or full")),
+            }
+        }
+        "time.end" => scene.time.end = End::At(positive(v)?),
+        "time.after_contact" => {
+            scene.time.end = End::AfterContact {
+                after: num(v)?,
+                limit: limit_of(scene.time.end),
+            }
+        }
+        "time.limit" => match &mut scene.time.end {
+            End::AfterContact { limit, .. } => *limit = positive(v)?,
+            End::At(_) => return Err("time.limit needs time.after_contact".into()),
+        },
+        "time.dt.cfl" => scene.time.dt = DtChoice::Cfl(positive(v)?),
+        "time.dt.fixed" => scene.time.dt = DtChoice::Fixed(positive(v)?),
+        "output.every" => scene.output.every = Some(positive(v)?),
+        "pulse.force" | "pulse.duration" => match &mut scene.load {
+            Load::Pulse(p) => {
+                if key == "pulse.force" {
+                    p.force = num(v)?
+                } else {
+                    p.duration = positive(v)?
+                }
+            }
+            Load::Impactor(_) => return Err("the scene has no pulse".into()),
+        },
+        _ if key.starts_with("impactor.") => {
+            let Load::Impactor(i) = &mut scene.load else {
+                return Err("the scene has no impactor".into());
+            };
+            match &key["impactor.".len()..] {
+                "mass" => i.mass = positive(v)?,
+                "velocity" => i.velocity = positive(v)?,
+                "nose_radius" => i.nose_radius = positive(v)?,
+                "indentation_datum" => i.indentation_datum = mid_span(v)?,
+                "force_node" => i.force_node = mid_span(v)?,
+                "contact_law.paper.length_unit" => {
+                    i.contact_law = ContactLawChoice::Paper { length_unit: positive(v)? }
+                }
+                "contact_law.johnson.datum_depth" => {
+                    i.contact_law = ContactLawChoice::Johnson { datum_depth: positive(v)? }
+                }
+                o => return Err(format!("unknown impactor key {o:?}")),
+            }
+        }
+        _ => return Err("unknown override key".into()),
+    }
+    Ok(())
+}
+
+/// A refined copy of a scene: `mesh` multiplies nx and ny by `level` (the step follows the
+/// mesh through the CFL number), `dt` divides the step by `level`.
+pub fn refine(scene: &Scene, how: Refine, level: f64) -> Result<Scene, String> {
+    let mut s = scene.clone();
+    match how {
+        Refine::Mesh => {
+            let scale = |n: usize| -> Result<usize, String> {
+                let x = n as f64 * level;
+                if (x - x.round()).abs() > 1e-9 || x < 1.0 {
+                    Err(format!("level {level} does not give an integer element count from {n}"))
+                } else {
+                    Ok(x.round() as usize)
+                }
+            };
+            s.mesh.nx = scale(s.mesh.nx)?;
+            s.mesh.ny = scale(s.mesh.ny)?;
+            if s.mesh.ny % 2 != 0 {
+                return Err(format!("level {level} gives an odd ny"));
+            }
+        }
+        Refine::Dt => {
+            s.time.dt = match s.time.dt {
+                DtChoice::Cfl(c) => DtChoice::Cfl(c / level),
+                DtChoice::Fixed(d) => DtChoice::Fixed(d / level),
+            }
+        }
+    }
+    Ok(s)
+}

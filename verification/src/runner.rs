@@ -1,0 +1,511 @@
+//! `impact verify`: select cases, run their jobs in parallel (each job is single-threaded
+//! and independent, results are keyed by job, so the outcome does not depend on the thread
+//! count or the scheduling), evaluate the checks, print the matrix, write results.json,
+//! JUnit XML and the run data the report reads.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::case::{Case, Category};
+use crate::check::{self, CheckResult, Context, Status};
+use crate::jobs::{self, Job, JobResult};
+
+/// Paths of the repository the harness works in.
+#[derive(Debug, Clone)]
+pub struct Repo {
+    pub root: PathBuf,
+}
+
+impl Repo {
+    /// The workspace root: the folder holding `verification/cases` above `start`.
+    pub fn find(start: &Path) -> Option<Repo> {
+        let mut dir = Some(start);
+        while let Some(d) = dir {
+            if d.join("verification").join("cases").is_dir() {
+                return Some(Repo { root: d.to_path_buf() });
+            }
+            dir = d.parent();
+        }
+        None
+    }
+    /// The repository of this crate (for tests and a binary run from anywhere in it).
+    pub fn this() -> Repo {
+        let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+        Repo {
+            root: manifest.parent().unwrap_or(manifest).to_path_buf(),
+        }
+    }
+    pub fn cases_dir(&self) -> PathBuf {
+        self.root.join("verification").join("cases")
+    }
+}
+
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Suites, case ids or `suite/case` names; empty = all.
+    pub selectors: Vec<String>,
+    /// Substring of `suite/case/check`.
+    pub filter: Option<String>,
+    pub jobs: usize,
+    pub include_heavy: bool,
+    pub progress: bool,
+}
+
+/// One case's outcome.
+#[derive(Debug, Clone, Serialize)]
+pub struct CaseResult {
+    pub suite: String,
+    pub case: String,
+    pub id: String,
+    pub title: String,
+    pub requirement_id: String,
+    pub requirement: String,
+    pub category: Category,
+    pub heavy: bool,
+    pub problem: String,
+    /// Modelling of each scene run (mesh, element, dt, contact law, ...).
+    pub modelling: BTreeMap<String, BTreeMap<String, String>>,
+    /// Metrics of each scene and builtin (no wall times).
+    pub metrics: BTreeMap<String, BTreeMap<String, f64>>,
+    /// Errors of failed jobs.
+    pub job_errors: BTreeMap<String, String>,
+    /// Series data for convergence plots: series -> metric -> (levels, values).
+    pub series: BTreeMap<String, SeriesData>,
+    pub plots: Vec<crate::case::PlotSpec>,
+    pub checks: Vec<CheckResult>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct SeriesData {
+    pub refine: crate::case::Refine,
+    pub levels: Vec<f64>,
+    pub metrics: BTreeMap<String, Vec<f64>>,
+}
+
+#[derive(Debug, Clone, Default, Serialize, PartialEq)]
+pub struct Counts {
+    pub ok: usize,
+    pub fail: usize,
+    pub skip: usize,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Matrix {
+    pub counts: Counts,
+    pub cases: Vec<CaseResult>,
+}
+
+/// What a verify run holds in memory besides the matrix: the job results for the run data.
+pub struct Outcome {
+    pub matrix: Matrix,
+    /// (suite, case) -> scene -> result.
+    pub data: BTreeMap<(String, String), BTreeMap<String, JobResult>>,
+}
+
+impl Matrix {
+    pub fn all_checks(&self) -> impl Iterator<Item = (&CaseResult, &CheckResult)> {
+        self.cases.iter().flat_map(|c| c.checks.iter().map(move |k| (c, k)))
+    }
+}
+
+fn selected(case: &Case, opts: &Options) -> bool {
+    if case.file.heavy && !opts.include_heavy {
+        return false;
+    }
+    if opts.selectors.is_empty() {
+        return true;
+    }
+    let full = format!("{}/{}", case.suite, case.name);
+    opts.selectors
+        .iter()
+        .any(|s| s == &case.suite || s == case.id() || s == &case.name || *s == full)
+}
+
+fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
+    match filter {
+        None => true,
+        Some(f) => format!("{}/{}/{}", case.suite, case.name, check_id).contains(f.as_str()),
+    }
+}
+
+/// Runs the selected cases. Errors: cases that do not load or do not lint.
+pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
+    let (cases, errors) = crate::case::load_cases(&repo.cases_dir());
+    let mut problems: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
+    problems.extend(crate::lint::lint(repo, &cases).into_iter().map(|f| f.to_string()));
+    if !problems.is_empty() {
+        return Err(problems);
+    }
+    let chosen: Vec<&Case> = cases
+        .iter()
+        .filter(|c| selected(c, opts))
+        .filter(|c| c.file.checks.iter().any(|k| check_matches(c, &k.value.id, &opts.filter)))
+        .collect();
+    if chosen.is_empty() {
+        return Err(vec![format!(
+            "no case matches {:?}{}",
+            opts.selectors,
+            opts.filter.as_ref().map(|f| format!(" with filter {f:?}")).unwrap_or_default()
+        )]);
+    }
+
+    // Jobs, deduplicated by content.
+    let mut unique: Vec<Job> = Vec::new();
+    let mut index_of: BTreeMap<String, usize> = BTreeMap::new();
+    let mut case_jobs: Vec<BTreeMap<String, Result<usize, String>>> = Vec::new();
+    for case in &chosen {
+        let case_skipped = case.file.skip.as_ref().is_some_and(|s| s.value.is_skip());
+        let mut map = BTreeMap::new();
+        if !case_skipped {
+            match jobs::case_jobs(case) {
+                Ok(js) => {
+                    for (name, job) in js {
+                        let key = job.key();
+                        let i = *index_of.entry(key).or_insert_with(|| {
+                            unique.push(job);
+                            unique.len() - 1
+                        });
+                        map.insert(name, Ok(i));
+                    }
+                }
+                Err(e) => {
+                    map.insert(String::new(), Err(e));
+                }
+            }
+        }
+        case_jobs.push(map);
+    }
+
+    // Largest first; results land in their own slot, whatever the thread.
+    let mut order: Vec<usize> = (0..unique.len()).collect();
+    order.sort_by(|&a, &b| unique[b].cost().total_cmp(&unique[a].cost()).then(a.cmp(&b)));
+    let bar = if opts.progress {
+        let b = ProgressBar::new(unique.len() as u64);
+        b.set_style(
+            ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        Some(b)
+    } else {
+        None
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs.max(1))
+        .build()
+        .map_err(|e| vec![format!("cannot start {} threads: {e}", opts.jobs)])?;
+    let mut slots: Vec<Option<JobResult>> = vec![None; unique.len()];
+    let finished: Vec<(usize, JobResult)> = pool.install(|| {
+        order
+            .par_iter()
+            .map(|&i| {
+                let r = unique[i].run();
+                if let Some(b) = &bar {
+                    b.inc(1);
+                }
+                (i, r)
+            })
+            .collect()
+    });
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    for (i, r) in finished {
+        slots[i] = Some(r);
+    }
+
+    let mut matrix = Matrix {
+        counts: Counts::default(),
+        cases: Vec::new(),
+    };
+    let mut data = BTreeMap::new();
+    for (case, jobs_of) in chosen.iter().zip(case_jobs) {
+        let mut results: BTreeMap<String, JobResult> = BTreeMap::new();
+        let mut setup_error = None;
+        for (name, idx) in jobs_of {
+            match idx {
+                Ok(i) => {
+                    results.insert(name, slots[i].clone().unwrap_or_else(|| Err("not run".into())));
+                }
+                Err(e) => setup_error = Some(e),
+            }
+        }
+        let series: BTreeMap<String, crate::case::SeriesSpec> =
+            case.file.series.iter().map(|(k, v)| (k.clone(), v.value.clone())).collect();
+        let default_scene = if case.file.scenes.len() == 1 {
+            case.file.scenes.keys().next().map(|s| s.as_str())
+        } else {
+            None
+        };
+        let ctx = Context {
+            results: &results,
+            series: &series,
+            root: &repo.root,
+            default_scene,
+        };
+        let case_skip = case.file.skip.as_ref().filter(|s| s.value.is_skip());
+        let mut checks = Vec::new();
+        let mut series_metrics: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        for k in &case.file.checks {
+            let k = &k.value;
+            if !check_matches(case, &k.id, &opts.filter) {
+                continue;
+            }
+            for q in [&k.measure.value.order, &k.measure.value.gci].into_iter().flatten() {
+                series_metrics.entry(q.series.clone()).or_default().insert(q.metric.clone());
+            }
+            let mut r = check::evaluate(k, &ctx);
+            if let Some(skip) = case_skip {
+                r.status = Status::Skip;
+                r.message = format!("case skipped: {}", skip.value.reason().unwrap_or(""));
+                r.computed = None;
+                r.error = None;
+            } else if let Some(e) = &setup_error {
+                r.status = Status::Fail;
+                r.message = e.clone();
+            }
+            match r.status {
+                Status::Ok => matrix.counts.ok += 1,
+                Status::Fail => matrix.counts.fail += 1,
+                Status::Skip => matrix.counts.skip += 1,
+            }
+            checks.push(r);
+        }
+        let mut series_data = BTreeMap::new();
+        for (name, metrics) in series_metrics {
+            let Some(spec) = series.get(&name) else { continue };
+            let mut m = BTreeMap::new();
+            for metric in metrics {
+                if let Ok((_, values, _)) = check::series_values(&name, &metric, &ctx) {
+                    m.insert(metric, values);
+                }
+            }
+            series_data.insert(
+                name,
+                SeriesData {
+                    refine: spec.refine,
+                    levels: spec.levels.clone(),
+                    metrics: m,
+                },
+            );
+        }
+        let mut modelling = BTreeMap::new();
+        let mut metrics = BTreeMap::new();
+        let mut job_errors = BTreeMap::new();
+        for (name, r) in &results {
+            match r {
+                Ok(d) => {
+                    if !d.info.is_empty() {
+                        modelling.insert(name.clone(), d.info.clone());
+                    }
+                    metrics.insert(name.clone(), d.metrics.clone());
+                }
+                Err(e) => {
+                    job_errors.insert(name.clone(), e.clone());
+                }
+            }
+        }
+        if let Some(e) = setup_error {
+            job_errors.insert("(setup)".into(), e);
+        }
+        matrix.cases.push(CaseResult {
+            suite: case.suite.clone(),
+            case: case.name.clone(),
+            id: case.id().to_string(),
+            title: case.file.title.clone(),
+            requirement_id: case.file.requirement.id.value.clone(),
+            requirement: case.file.requirement.text.value.clone(),
+            category: case.file.category,
+            heavy: case.file.heavy,
+            problem: case.file.problem.clone().unwrap_or_default(),
+            modelling,
+            metrics,
+            job_errors,
+            series: series_data,
+            plots: case.file.plots.clone(),
+            checks,
+        });
+        data.insert((case.suite.clone(), case.name.clone()), results);
+    }
+    Ok(Outcome { matrix, data })
+}
+
+/// Compact number for the matrix.
+pub fn num(x: Option<f64>) -> String {
+    match x {
+        None => "-".into(),
+        Some(v) if v == 0.0 => "0".into(),
+        Some(v) if v.is_infinite() => if v > 0.0 { "inf".into() } else { "-inf".into() },
+        Some(v) => format!("{v:.6e}"),
+    }
+}
+
+/// The matrix as text: one row per check.
+pub fn matrix_text(m: &Matrix) -> String {
+    let mut rows = vec![[
+        "suite".to_string(),
+        "case".into(),
+        "check".into(),
+        "status".into(),
+        "computed".into(),
+        "reference".into(),
+        "error".into(),
+        "tolerance".into(),
+    ]];
+    for (c, k) in m.all_checks() {
+        let error = match k.error {
+            Some(e) => format!("{}{}", num(Some(e)), if k.error_kind == "relative" { " rel" } else { "" }),
+            None => "-".into(),
+        };
+        let cmp = match k.compare {
+            crate::case::Compare::Within => "",
+            crate::case::Compare::AtMost => "<= ",
+            crate::case::Compare::AtLeast => ">= ",
+        };
+        let status = if k.status == Status::Fail && k.known_failure.is_some() {
+            "FAIL*".to_string()
+        } else {
+            k.status.name().to_string()
+        };
+        rows.push([
+            c.suite.clone(),
+            c.case.clone(),
+            k.id.clone(),
+            status,
+            num(k.computed),
+            format!("{cmp}{}", num(k.reference)),
+            error,
+            k.tolerance.clone(),
+        ]);
+    }
+    let mut widths = [0usize; 8];
+    for r in &rows {
+        for (w, s) in widths.iter_mut().zip(r) {
+            *w = (*w).max(s.chars().count());
+        }
+    }
+    let mut out = String::new();
+    for r in &rows {
+        let line: Vec<String> = r.iter().zip(widths).map(|(s, w)| format!("{s:<w$}")).collect();
+        out.push_str(line.join("  ").trim_end());
+        out.push('\n');
+    }
+    out
+}
+
+/// Per-suite counts and the list of non-OK checks with their messages.
+pub fn summary_text(m: &Matrix) -> String {
+    let mut per: BTreeMap<&str, Counts> = BTreeMap::new();
+    for (c, k) in m.all_checks() {
+        let e = per.entry(&c.suite).or_default();
+        match k.status {
+            Status::Ok => e.ok += 1,
+            Status::Fail => e.fail += 1,
+            Status::Skip => e.skip += 1,
+        }
+    }
+    let mut out = String::from("\nsuite                 OK  FAIL  SKIP\n");
+    for (s, c) in &per {
+        out.push_str(&format!("{s:<20} {:>4} {:>5} {:>5}\n", c.ok, c.fail, c.skip));
+    }
+    out.push_str(&format!(
+        "{:<20} {:>4} {:>5} {:>5}\n",
+        "total", m.counts.ok, m.counts.fail, m.counts.skip
+    ));
+    let notes: Vec<String> = m
+        .all_checks()
+        .filter(|(_, k)| k.status != Status::Ok)
+        .map(|(c, k)| {
+            let known = k.known_failure.as_ref().map(|r| format!(" [known: {r}]")).unwrap_or_default();
+            format!("  {} {}/{}/{}: {}{known}", k.status.name(), c.suite, c.case, k.id, k.message)
+        })
+        .collect();
+    if !notes.is_empty() {
+        out.push_str("\nnot OK:\n");
+        out.push_str(&notes.join("\n"));
+        out.push('\n');
+    }
+    out
+}
+
+/// JUnit XML: one test suite per case, one test case per check.
+pub fn junit_xml(m: &Matrix) -> Result<String, String> {
+    use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
+    let mut report = Report::new("impact-verify");
+    for c in &m.cases {
+        let mut suite = TestSuite::new(format!("{}/{}", c.suite, c.case));
+        for k in &c.checks {
+            let detail = format!(
+                "computed {} reference {} ({}) error {} tolerance {} ({})",
+                num(k.computed),
+                num(k.reference),
+                k.reference_kind,
+                num(k.error),
+                k.tolerance,
+                k.tolerance_reason
+            );
+            let status = match k.status {
+                Status::Ok => TestCaseStatus::success(),
+                Status::Fail => {
+                    let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                    s.set_message(k.message.clone());
+                    s.set_description(detail.clone());
+                    s
+                }
+                Status::Skip => {
+                    let mut s = TestCaseStatus::skipped();
+                    s.set_message(k.message.clone());
+                    s
+                }
+            };
+            let mut tc = TestCase::new(k.id.clone(), status);
+            tc.set_classname(format!("{}.{}", c.suite, c.case));
+            tc.set_system_out(detail);
+            suite.add_test_case(tc);
+        }
+        report.add_test_suite(suite);
+    }
+    report.to_string().map_err(|e| e.to_string())
+}
+
+/// Writes results.json, junit.xml, matrix.txt and runs/<suite>/<case>/<scene>/ into `out`.
+pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(out)?;
+    let json = serde_json::to_string_pretty(&outcome.matrix).map_err(std::io::Error::other)?;
+    std::fs::write(out.join("results.json"), json + "\n")?;
+    std::fs::write(
+        out.join("junit.xml"),
+        junit_xml(&outcome.matrix).map_err(std::io::Error::other)?,
+    )?;
+    std::fs::write(
+        out.join("matrix.txt"),
+        matrix_text(&outcome.matrix) + &summary_text(&outcome.matrix),
+    )?;
+    let runs = out.join("runs");
+    if runs.exists() {
+        std::fs::remove_dir_all(&runs)?;
+    }
+    for ((suite, case), results) in &outcome.data {
+        for (scene, r) in results {
+            let Ok(d) = r else { continue };
+            let dir = runs.join(suite).join(case).join(scene);
+            std::fs::create_dir_all(&dir)?;
+            for (name, h) in &d.histories {
+                let file = if name.is_empty() { "history.csv".to_string() } else { format!("{name}.csv") };
+                impact_solver::output::write_history(h, &dir.join(file)).map_err(std::io::Error::other)?;
+            }
+            if let Some(s) = &d.summary {
+                let text = serde_json::to_string_pretty(s).map_err(std::io::Error::other)?;
+                std::fs::write(dir.join("summary.json"), text + "\n")?;
+            }
+        }
+    }
+    Ok(())
+}
+
+pub type Shared<T> = Arc<T>;

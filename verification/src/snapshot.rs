@@ -1,0 +1,1 @@
+//! Snapshot text of a case (filled in below).
