@@ -111,6 +111,9 @@ impl std::ops::AddAssign for ElementEnergy {
 pub trait Formulation: Sync {
     /// Integration points that carry material state (4 or 1).
     const POINTS: usize;
+    /// Whether an elastic run is faster with precomputed element stiffness matrices than
+    /// with the stress path (measured by `impact-bench throughput`: not for one point).
+    const STIFFNESS_MATRIX_PAYS: bool = true;
     fn n_elements(&self) -> usize;
     fn nodes(&self, e: usize) -> [u32; 4];
     /// Strain at each integration point (the first `POINTS` entries are used).
@@ -384,6 +387,7 @@ impl OnePointQ4 {
 
 impl Formulation for OnePointQ4 {
     const POINTS: usize = 1;
+    const STIFFNESS_MATRIX_PAYS: bool = false;
     fn n_elements(&self) -> usize {
         self.nodes.len()
     }

@@ -87,8 +87,12 @@ impl Run<'_> {
             }
             None => {
                 let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
-                let model = PlateModel::new(formulation, elastic, self.mesh, density)
-                    .with_linear_kernel(&self.mesh.mesh, &elastic);
+                let model = PlateModel::new(formulation, elastic, self.mesh, density);
+                let model = if F::STIFFNESS_MATRIX_PAYS {
+                    model.with_linear_kernel(&self.mesh.mesh, &elastic)
+                } else {
+                    model
+                };
                 self.with_model(model, observer)
             }
         }

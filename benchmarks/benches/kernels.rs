@@ -1,0 +1,80 @@
+//! criterion benchmarks: the element kernels (internal force + material update) per element
+//! type, elastic (precomputed stiffness and stress path) and plastic with every point
+//! yielding, on the example's 80x16 mesh; and a short whole run (time loop only).
+//! Throughput is reported per element: criterion's "elem/s" is element-steps per second.
+
+use std::path::Path;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use impact_solver::integrator::PlateModel;
+use impact_solver::material::{ConstitutiveModel, Elastic, VonMises};
+use impact_solver::mesh::PlateMesh;
+use impact_solver::scene::End;
+use impact_solver::{simulate, Quiet, Scene};
+
+const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
+
+fn scene() -> Scene {
+    Scene::from_yaml(PLASTIC, Path::new("example-plastic.yaml")).unwrap()
+}
+
+fn bench_model<F: Formulation, M: ConstitutiveModel>(c: &mut Criterion, name: &str, mut model: PlateModel<F, M>, mesh: &PlateMesh) {
+    // Uniform strain 1e-2 (8x the yield strain), reversed every call: every point yields.
+    let u: Vec<f64> = mesh.mesh.coords.iter().flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]]).collect();
+    let minus: Vec<f64> = u.iter().map(|x| -x).collect();
+    let mut f = vec![0.0; u.len()];
+    let mut flip = false;
+    let mut group = c.benchmark_group("element-kernel");
+    group.throughput(Throughput::Elements(model.formulation.n_elements() as u64));
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            flip = !flip;
+            model.internal_forces(if flip { &u } else { &minus }, &mut f)
+        })
+    });
+    group.finish();
+}
+
+fn kernels(c: &mut Criterion) {
+    let s = scene();
+    let mesh = PlateMesh::new(&s.plate, &s.mesh);
+    let (w, rho) = (s.plate.width, s.material.density);
+    let elastic = Elastic::new(s.material.youngs_modulus, s.material.poisson_ratio);
+    let plastic = VonMises::new(&s.material).unwrap();
+    macro_rules! all {
+        ($name:literal, $f:expr) => {
+            bench_model(c, concat!($name, "/elastic"), PlateModel::new($f, elastic, &mesh, rho).with_linear_kernel(&mesh.mesh, &elastic), &mesh);
+            bench_model(c, concat!($name, "/elastic-stress-path"), PlateModel::new($f, elastic, &mesh, rho), &mesh);
+            bench_model(c, concat!($name, "/plastic-all-yielding"), PlateModel::new($f, plastic.clone(), &mesh, rho), &mesh);
+        };
+    }
+    all!("q4-full", FullQ4::new(&mesh.mesh, w).unwrap());
+    all!("q4-sri", SelectiveQ4::new(&mesh.mesh, w).unwrap());
+    all!("q4-1pt", OnePointQ4::new(&mesh.mesh, w, s.mesh.hourglass, elastic.p_modulus()).unwrap());
+}
+
+fn whole_steps(c: &mut Criterion) {
+    let mut s = scene();
+    s.output.fields_every = None;
+    s.output.every = Some(1e-4);
+    s.time.end = End::At(2e-4);
+    let probe = simulate(&s, &mut Quiet).unwrap().summary;
+    let mut group = c.benchmark_group("time-step");
+    group.throughput(Throughput::Elements(probe.n_elements as u64 * probe.n_steps));
+    group.sample_size(10);
+    group.bench_function("example-plastic/q4-sri/0.2ms", |b| {
+        b.iter_custom(|iters| {
+            let mut total = std::time::Duration::ZERO;
+            for _ in 0..iters {
+                let o = simulate(&s, &mut Quiet).unwrap();
+                total += std::time::Duration::from_secs_f64(o.summary.loop_time);
+            }
+            total
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, kernels, whole_steps);
+criterion_main!(benches);

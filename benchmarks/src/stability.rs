@@ -1,0 +1,196 @@
+//! Stress tests of numerical stability: a CFL sweep on uniform, graded and distorted meshes
+//! (elastic and plastic, with contact), the measured critical CFL ratio, and extreme but
+//! valid inputs. Every run must either stay bounded (energy balance and impulse identity
+//! within their bounds) or stop with a clear error: a silent blow-up is a failure.
+
+use std::path::Path;
+
+use impact_solver::scene::{DtChoice, End, Hardening, Load};
+use impact_solver::{simulate, Error, Quiet, Scene};
+
+use crate::common::{example, markdown_table, write_csv};
+
+/// Energy balance bound of a run counted as bounded (1 %: coarse meshes, cfl up to 1).
+const BALANCE_BOUND: f64 = 1e-2;
+
+struct Outcome {
+    status: &'static str,
+    balance: f64,
+    impulse_error: f64,
+    note: String,
+}
+
+fn attempt(scene: &Scene) -> Outcome {
+    match simulate(scene, &mut Quiet) {
+        Ok(o) => {
+            let s = &o.summary;
+            let finite = o.history.values.iter().all(|x| x.is_finite());
+            let impulse_error = s.impulse_momentum_error.unwrap_or(0.0);
+            let bounded = finite && s.max_energy_balance_error < BALANCE_BOUND && impulse_error < 1e-9;
+            Outcome {
+                status: if bounded { "bounded" } else { "UNBOUNDED" },
+                balance: s.max_energy_balance_error,
+                impulse_error,
+                note: format!("{} steps", s.n_steps),
+            }
+        }
+        Err(Error::Run { step, what, .. }) => Outcome {
+            status: "stopped",
+            balance: f64::NAN,
+            impulse_error: f64::NAN,
+            note: format!("step {step}: {}", what.split(':').next().unwrap_or(&what)),
+        },
+        Err(e) => Outcome { status: "refused", balance: f64::NAN, impulse_error: f64::NAN, note: e.to_string() },
+    }
+}
+
+fn small(plastic: bool, mesh: &str) -> Scene {
+    let mut s = example(plastic);
+    s.mesh.nx = 20;
+    s.mesh.ny = 4;
+    match mesh {
+        "graded" => s.mesh.grading = 4.0,
+        "distorted" => s.mesh.distortion = 0.3,
+        _ => {}
+    }
+    s.output.every = Some(1e-4);
+    s.time.allow_unstable_dt = true;
+    s
+}
+
+/// Whether a run at `cfl` stays stable for 5000 steps.
+fn stable_at(base: &Scene, cfl: f64) -> bool {
+    let mut s = base.clone();
+    s.time.dt = DtChoice::Cfl(cfl);
+    let dt_guess = simulate(&{
+        let mut probe = s.clone();
+        probe.time.end = End::At(1e-12);
+        probe
+    }, &mut Quiet)
+    .map(|o| o.summary.dt)
+    .unwrap_or(1e-7);
+    s.time.end = End::At(5000.0 * dt_guess);
+    matches!(attempt(&s).status, "bounded")
+}
+
+pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
+    let cfls: Vec<f64> = if quick { vec![0.3, 0.9, 1.2] } else { (1..=13).map(|i| i as f64 / 10.0).collect() };
+    let mut rows = Vec::new();
+    let mut violations = 0;
+    let mut critical = Vec::new();
+    for mesh in ["uniform", "graded", "distorted"] {
+        for plastic in [false, true] {
+            let base = small(plastic, mesh);
+            for &cfl in &cfls {
+                let mut s = base.clone();
+                s.time.dt = DtChoice::Cfl(cfl);
+                let o = attempt(&s);
+                if cfl < 1.0 && o.status != "bounded" {
+                    violations += 1;
+                }
+                rows.push(vec![
+                    mesh.into(),
+                    if plastic { "plastic" } else { "elastic" }.into(),
+                    format!("{cfl:.1}"),
+                    o.status.into(),
+                    format!("{:.2e}", o.balance),
+                    format!("{:.1e}", o.impulse_error),
+                    o.note,
+                ]);
+            }
+            // Bisection of the critical ratio between a stable and an unstable CFL.
+            let (mut lo, mut hi) = (0.9, 4.0);
+            if stable_at(&base, hi) {
+                critical.push(vec![mesh.into(), if plastic { "plastic" } else { "elastic" }.into(), "> 4".into()]);
+                continue;
+            }
+            for _ in 0..(if quick { 4 } else { 10 }) {
+                let mid = 0.5 * (lo + hi);
+                if stable_at(&base, mid) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            critical.push(vec![
+                mesh.into(),
+                if plastic { "plastic" } else { "elastic" }.into(),
+                format!("{:.3} .. {:.3}", lo, hi),
+            ]);
+        }
+    }
+    let header = ["mesh", "material", "cfl", "status", "max_balance_error", "impulse_error", "note"];
+    write_csv(&out.join("stability-cfl.csv"), &header, &rows)?;
+    let mut md = String::from("## CFL sweep (20x4 mesh, impact with contact, 3 ms)\n\n");
+    md += &markdown_table(&header, &rows);
+    md += &format!("\nRuns below cfl 1.0 not bounded: {violations}\n\n## Measured critical ratio (stable for 5000 steps)\n\n");
+    md += &markdown_table(&["mesh", "material", "critical cfl"], &critical);
+    let extreme = extreme_inputs(quick);
+    let eheader = ["case", "status", "max_balance_error", "impulse_error", "note"];
+    write_csv(&out.join("stability-extreme.csv"), &eheader, &extreme)?;
+    md += "\n## Extreme but valid inputs (20x4 mesh unless said)\n\n";
+    md += &markdown_table(&eheader, &extreme);
+    std::fs::write(out.join("stability.md"), &md)?;
+    println!("{md}");
+    let silent = rows.iter().chain(extreme.iter()).filter(|r| r.iter().any(|c| c == "UNBOUNDED")).count();
+    anyhow::ensure!(violations == 0, "{violations} runs below cfl 1 were not bounded");
+    anyhow::ensure!(silent == 0, "{silent} runs ended unbounded without an error");
+    Ok(())
+}
+
+fn extreme_inputs(quick: bool) -> Vec<Vec<String>> {
+    let mut cases: Vec<(String, Scene)> = Vec::new();
+    let impactor = |f: &dyn Fn(&mut impact_solver::scene::Impactor)| {
+        let mut s = small(true, "uniform");
+        s.time.dt = DtChoice::Cfl(0.8);
+        if let Load::Impactor(i) = &mut s.load {
+            f(i);
+        }
+        s
+    };
+    for v in [0.01, 100.0] {
+        cases.push((format!("velocity {v} m/s"), impactor(&|i| i.velocity = v)));
+    }
+    for m in [0.01, 1000.0] {
+        cases.push((format!("mass {m} kg"), impactor(&|i| i.mass = m)));
+    }
+    for r in [1e-4, 1.0] {
+        cases.push((format!("nose radius {r} m"), impactor(&|i| i.nose_radius = r)));
+    }
+    for (name, e) in [("very soft plate E = 1 GPa", 1e9), ("very stiff plate E = 2 TPa", 2e12)] {
+        let mut s = impactor(&|_| {});
+        s.material.youngs_modulus = e;
+        if let Some(p) = &mut s.material.plasticity {
+            p.hardening = Hardening::Linear { tangent_modulus: 0.0075 * e };
+        }
+        cases.push((name.into(), s));
+    }
+    for (name, nx, ny) in [("element aspect 10 (long)", 4, 8), ("element aspect 10 (tall)", 40, 2)] {
+        let mut s = impactor(&|_| {});
+        s.mesh.nx = nx;
+        s.mesh.ny = ny;
+        cases.push((name.into(), s));
+    }
+    for (name, et) in [("zero hardening", 0.0), ("strong hardening E_t = E/2", 103.5e9)] {
+        let mut s = impactor(&|_| {});
+        if let Some(p) = &mut s.material.plasticity {
+            p.hardening = Hardening::Linear { tangent_modulus: et };
+        }
+        cases.push((name.into(), s));
+    }
+    let steps = if quick { 100_000.0 } else { 1_000_000.0 };
+    let mut long = example(false);
+    long.mesh.nx = 10;
+    long.mesh.ny = 2;
+    long.output.every = Some(1e-3);
+    long.time.dt = DtChoice::Fixed(5e-7);
+    long.time.end = End::At(steps * 5e-7);
+    cases.push((format!("long run, {steps:.0} steps (10x2, elastic)"), long));
+    cases
+        .into_iter()
+        .map(|(name, scene)| {
+            let o = attempt(&scene);
+            vec![name, o.status.into(), format!("{:.2e}", o.balance), format!("{:.1e}", o.impulse_error), o.note]
+        })
+        .collect()
+}

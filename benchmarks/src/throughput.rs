@@ -1,0 +1,130 @@
+//! Element-kernel throughput (ns per element-step) and whole-run times, against the targets
+//! of the benchmarks issue: q4-1pt elastic <= 15 ns, q4-sri elastic <= 30 ns, q4-sri with
+//! every point yielding <= 80 ns, the elasto-plastic Table 1 run at the default mesh < 0.5 s.
+
+use std::path::Path;
+use std::time::Instant;
+
+use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use impact_solver::integrator::PlateModel;
+use impact_solver::material::{ConstitutiveModel, Elastic, VonMises};
+use impact_solver::mesh::PlateMesh;
+use impact_solver::scene::ElementKind;
+
+use crate::common::{example, markdown_table, timed, write_csv};
+
+/// A displacement field of uniform strain `amplitude` (xx) and `amplitude/2` (shear).
+fn uniform_strain(mesh: &PlateMesh, amplitude: f64) -> Vec<f64> {
+    mesh.mesh
+        .coords
+        .iter()
+        .flat_map(|p| [amplitude * p[0] + 0.5 * amplitude * p[1], -0.3 * amplitude * p[1]])
+        .collect()
+}
+
+/// Best ns per element over `reps` batches of `calls` internal-force evaluations,
+/// alternating between `u` and `-u` (for plastic materials: every point yields every call).
+fn kernel_ns<F: Formulation, M: ConstitutiveModel>(model: &mut PlateModel<F, M>, u: &[f64], calls: usize, reps: usize) -> f64 {
+    let minus: Vec<f64> = u.iter().map(|x| -x).collect();
+    let mut f = vec![0.0; u.len()];
+    let mut best = f64::INFINITY;
+    for rep in 0..=reps {
+        let started = Instant::now();
+        let mut sink = 0.0;
+        for c in 0..calls {
+            sink += model.internal_forces(if c % 2 == 0 { u } else { &minus }, &mut f).strain;
+        }
+        std::hint::black_box(sink);
+        if rep > 0 {
+            best = best.min(started.elapsed().as_secs_f64());
+        }
+    }
+    1e9 * best / (calls * model.formulation.n_elements()) as f64
+}
+
+struct Case {
+    element: ElementKind,
+    material: &'static str,
+}
+
+fn measure(case: &Case, quick: bool) -> f64 {
+    let scene = example(case.material != "elastic");
+    let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
+    let (w, m) = (scene.plate.width, &scene.material);
+    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    let (calls, reps) = if quick { (20, 2) } else { (400, 5) };
+    // Strain 1e-2 is 8x the yield strain of the plastic example: every point yields.
+    let u = uniform_strain(&mesh, 1e-2);
+    macro_rules! go {
+        ($f:expr) => {{
+            match case.material {
+                "elastic" => kernel_ns(
+                    &mut PlateModel::new($f, elastic, &mesh, m.density).with_linear_kernel(&mesh.mesh, &elastic),
+                    &u,
+                    calls,
+                    reps,
+                ),
+                "elastic-stress-path" => kernel_ns(&mut PlateModel::new($f, elastic, &mesh, m.density), &u, calls, reps),
+                _ => kernel_ns(
+                    &mut PlateModel::new($f, VonMises::new(m).expect("plastic example"), &mesh, m.density),
+                    &u,
+                    calls,
+                    reps,
+                ),
+            }
+        }};
+    }
+    match case.element {
+        ElementKind::Q4Full => go!(FullQ4::new(&mesh.mesh, w).expect("valid mesh")),
+        ElementKind::Q4Sri => go!(SelectiveQ4::new(&mesh.mesh, w).expect("valid mesh")),
+        ElementKind::Q4OnePoint => go!(OnePointQ4::new(&mesh.mesh, w, scene.mesh.hourglass, elastic.p_modulus()).expect("valid mesh")),
+    }
+}
+
+pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
+    let mut rows = Vec::new();
+    for element in [ElementKind::Q4Full, ElementKind::Q4Sri, ElementKind::Q4OnePoint] {
+        for material in ["elastic", "elastic-stress-path", "plastic-all-yielding"] {
+            let target_ns = match (element, material) {
+                (ElementKind::Q4OnePoint, "elastic") => Some(15.0),
+                (ElementKind::Q4Sri, "elastic") => Some(30.0),
+                (ElementKind::Q4Sri, "plastic-all-yielding") => Some(80.0),
+                _ => None,
+            };
+            let case = Case { element, material };
+            let ns = measure(&case, quick);
+            rows.push(vec![
+                element.name().to_string(),
+                material.to_string(),
+                format!("{ns:.1}"),
+                format!("{:.3e}", 1e9 / ns),
+                target_ns.map_or("-".into(), |t| format!("<= {t}")),
+                target_ns.map_or("-".into(), |t| if ns <= t { "met".into() } else { "missed".into() }),
+            ]);
+        }
+    }
+    let header = ["element", "material", "ns_per_element_step", "element_steps_per_s", "target_ns", "status"];
+    write_csv(&out.join("throughput-kernels.csv"), &header, &rows)?;
+    println!("Element kernels (internal force + material update), one thread, 80x16 mesh:\n{}", markdown_table(&header, &rows));
+
+    let mut runs = Vec::new();
+    for plastic in [false, true] {
+        let scene = example(plastic);
+        let (setup, time_loop, o) = timed(&scene, if quick { 1 } else { 3 })?;
+        let s = &o.summary;
+        let target = if plastic { "< 0.5 s" } else { "-" };
+        runs.push(vec![
+            if plastic { "table1-elasto-plastic" } else { "table1-elastic" }.to_string(),
+            format!("{setup:.4}"),
+            format!("{time_loop:.4}"),
+            format!("{}", s.n_steps),
+            format!("{:.1}", 1e9 * time_loop / (s.n_steps as f64 * s.n_elements as f64)),
+            target.into(),
+            if plastic { if setup + time_loop < 0.5 { "met" } else { "missed" } } else { "-" }.into(),
+        ]);
+    }
+    let header = ["run", "setup_s", "loop_s", "steps", "ns_per_element_step", "target", "status"];
+    write_csv(&out.join("throughput-runs.csv"), &header, &runs)?;
+    println!("Whole runs (example scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}", markdown_table(&header, &runs));
+    Ok(())
+}
