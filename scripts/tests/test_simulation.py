@@ -274,15 +274,15 @@ def test_cli(tmp_path):
 
 
 def test_pulse_end_uses_the_force_applied_at_the_next_step():
-    """F_pulse(t_{n+1}) with t_{n+1} = (n+1) dt, not t_n + dt: with dt = 2.5e-7 and a 1e-4 s
-    pulse, 399 dt + dt rounds below 1e-4 while 400 dt does not. The trapezoidal impulse must
-    match the applied-force history (F at steps 0..399, 0 from step 400 on)."""
-    dt, F = 2.5e-7, 86.5e3
-    assert 399 * dt + dt < 1e-4 <= 400 * dt
-    sc = scene(**{"load.impactor": None, "load.pulse": {"force": F, "duration": 1.0e-4},
-                  "time.end": 1.2e-4, "time.dt": {"fixed": dt}, "output.every": None})
+    """F_pulse(t_{n+1}) with t_{n+1} = (n+1) dt, not t_n + dt: with dt = 5e-7 and a 5e-4 s
+    pulse, 999 dt + dt rounds below 5e-4 while 1000 dt does not. The trapezoidal impulse must
+    match the applied-force history (F at steps 0..999, 0 from step 1000 on)."""
+    dt, F = 5e-7, 86.5e3
+    assert 999 * dt + dt < 5e-4 <= 1000 * dt
+    sc = scene(**{"load.impactor": None, "load.pulse": {"force": F, "duration": 5.0e-4},
+                  "time.end": 5.5e-4, "time.dt": {"fixed": dt}, "output.every": None})
     res = simulate(sc)
     f = res.column("contact_force_N")
-    assert f[399] == F and f[400] == 0.0
-    assert res.summary["impulse_Ns"] == pytest.approx(F * 399.5 * dt, rel=1e-13)
-    assert res.summary["contact_intervals_s"] == [[0.0, 400 * dt]]
+    assert f[999] == F and f[1000] == 0.0
+    assert res.summary["impulse_Ns"] == pytest.approx(F * 999.5 * dt, rel=1e-13)
+    assert res.summary["contact_intervals_s"] == [[0.0, 1000 * dt]]
