@@ -16,9 +16,20 @@ use crate::mesh::{Mesh, PlateMesh};
 use crate::stiffness::LinearKernel;
 use crate::scene::{DtChoice, End, Load, Scene};
 
-/// Energy error beyond which a run is stopped as unstable: total energy more than this
-/// multiple of the largest energy the run was given. A stable run stays below 1e-2.
+/// Energy error beyond which any run is stopped as unstable: total energy more than this
+/// multiple of the largest energy the run was given.
 pub const BLOW_UP_BALANCE_ERROR: f64 = 10.0;
+
+/// Tighter bound for energy-consistent scenes (force on the node the indentation is read
+/// from, or a pulse): their balance is an identity up to O(dt^2) and stays below 1e-2 in
+/// every stable run seen (`impact-bench stability`), so 10 % means the run has gone wrong
+/// (e.g. an instability that plastic flow absorbs). The paper's literal force-node reading
+/// does not balance by design (27 % seen elastically) and keeps only the bound above.
+pub const BLOW_UP_BALANCE_ERROR_CONSISTENT: f64 = 0.1;
+
+/// Steps before the tighter bound applies: the first steps of a suddenly applied pulse carry
+/// an O(dt) imbalance against a still tiny energy scale.
+pub const CONSISTENT_GUARD_AFTER_STEPS: u64 = 100;
 
 /// Steps between checks for inverted elements (a run that inverts one stops within this).
 pub const INVERSION_CHECK_EVERY: u64 = 32;
@@ -265,6 +276,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let mut impactor = impactor_spec.map(|i| RigidImpactor::new(i.mass, i.velocity));
     let datum = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
     let force_node = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.force_node));
+    let energy_consistent = force_node == datum;
     let pulse = match &scene.load {
         Load::Pulse(p) => Some(*p),
         Load::Impactor(_) => None,
@@ -387,12 +399,17 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         if n == 0 {
             totals.initial_energy = energies;
         }
-        if !balance_error.is_finite() || balance_error > BLOW_UP_BALANCE_ERROR {
+        let bound = if energy_consistent && n >= CONSISTENT_GUARD_AFTER_STEPS {
+            BLOW_UP_BALANCE_ERROR_CONSISTENT
+        } else {
+            BLOW_UP_BALANCE_ERROR
+        };
+        if !balance_error.is_finite() || balance_error > bound {
             return Err(Error::Run {
                 step: n,
                 time_s: t,
                 what: format!(
-                    "unstable: the energy balance error reached {balance_error:.3e} (total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {dt:.6e} s is {:.3} of the stable estimate",
+                    "unstable: the energy balance error reached {balance_error:.3e}, above {bound} (energy grows without a source: total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {dt:.6e} s is {:.3} of the stable estimate",
                     energies.total(), totals.initial_energy.total(), external_work, dt / dt_critical
                 ),
             });
