@@ -482,10 +482,16 @@ pub fn parse_case(text: &str, path: &Path) -> Result<CaseFile, CaseError> {
             .unwrap_or((0, 0));
         let message = e.to_string();
         let first = message.lines().next().unwrap_or(&message).trim();
-        let message = match first.find(" at line ") {
+        let mut message = match first.find(" at line ") {
             Some(p) => first[..p].to_string(),
             None => first.to_string(),
         };
+        // "error: line 13 column 27: invalid ..." repeats the location we print.
+        if let Some(rest) = message.strip_prefix("error: line ") {
+            if let Some(p) = rest.find(": ") {
+                message = rest[p + 2..].to_string();
+            }
+        }
         CaseError::Parse {
             loc: Loc {
                 file: path.to_path_buf(),

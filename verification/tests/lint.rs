@@ -1,0 +1,160 @@
+//! The lint runs inside `cargo test`: the repository's cases must be clean, each lint rule
+//! must fire on a case that breaks it, and a malformed case.yaml must give file:line:column.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use impact_verification::case::{load_cases, parse_case};
+use impact_verification::lint::lint;
+use impact_verification::runner::Repo;
+
+#[test]
+fn the_repository_cases_are_lint_clean() {
+    let repo = Repo::this();
+    let (cases, errors) = load_cases(&repo.cases_dir());
+    assert!(errors.is_empty(), "unreadable cases: {errors:#?}");
+    assert!(cases.len() >= 8, "expected the eight suites, found {} cases", cases.len());
+    let findings = lint(&repo, &cases);
+    let text: Vec<String> = findings.iter().map(|f| f.to_string()).collect();
+    assert!(findings.is_empty(), "lint findings:\n{}", text.join("\n"));
+    let suites: std::collections::BTreeSet<&str> = cases.iter().map(|c| c.suite.as_str()).collect();
+    for s in ["patch", "wave-speed", "pulse-86.5kN", "hertz", "momentum-impulse", "table1", "energy", "convergence"] {
+        assert!(suites.contains(s), "suite {s} missing");
+    }
+}
+
+static COUNTER: AtomicUsize = AtomicUsize::new(0);
+
+/// A scratch repository with one case and a reference-data folder.
+fn scratch(case_yaml: &str, provenance: bool) -> PathBuf {
+    let root = std::env::temp_dir().join(format!(
+        "impact-lint-{}-{}",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&root);
+    let dir = root.join("verification/cases/suite/case");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("case.yaml"), case_yaml).unwrap();
+    let data = root.join("reference-data/thing");
+    std::fs::create_dir_all(&data).unwrap();
+    std::fs::write(data.join("table.csv"), "key,value\na,1.5\n").unwrap();
+    if provenance {
+        std::fs::write(data.join("PROVENANCE.md"), "made by hand\n").unwrap();
+    }
+    root
+}
+
+fn findings(yaml: &str, provenance: bool) -> Vec<String> {
+    let root = scratch(yaml, provenance);
+    let repo = Repo { root: root.clone() };
+    let (cases, errors) = load_cases(&repo.cases_dir());
+    assert!(errors.is_empty(), "{errors:?}");
+    let f = lint(&repo, &cases).iter().map(|f| f.to_string()).collect();
+    let _ = std::fs::remove_dir_all(root);
+    f
+}
+
+const GOOD: &str = r#"
+id: c1
+title: t
+requirement: {id: REQ-1, text: The solver shall do a thing.}
+category: code verification
+scenes:
+  law: {builtin: hertz-law}
+checks:
+  - id: k1
+    title: a check
+    measure: {metric: round_trip_max_rel}
+    reference: {kind: analytical, value: 0.0, source: "closed form"}
+    tolerance: {absolute: 1.0e-12, reason: "round-off"}
+  - id: k2
+    title: a table check
+    measure: {metric: round_trip_max_rel}
+    reference: {kind: paper, table: {file: reference-data/thing/table.csv, row: {key: a}, column: value}, source: "a table"}
+    tolerance: {relative: 0.1, reason: "printed digits"}
+"#;
+
+#[test]
+fn a_good_case_is_clean() {
+    assert_eq!(findings(GOOD, true), Vec::<String>::new());
+}
+
+#[test]
+fn a_check_without_reference_kind_is_refused() {
+    let f = findings(&GOOD.replace("kind: analytical, ", ""), true);
+    assert!(f.iter().any(|m| m.contains("check k1: the reference has no kind") && m.contains("case.yaml:")), "{f:?}");
+}
+
+#[test]
+fn a_tolerance_without_reason_is_refused() {
+    let f = findings(&GOOD.replace(", reason: \"round-off\"", ""), true);
+    assert!(f.iter().any(|m| m.contains("check k1: the tolerance has no reason")), "{f:?}");
+    let f = findings(&GOOD.replace("reason: \"round-off\"", "reason: \"  \""), true);
+    assert!(f.iter().any(|m| m.contains("check k1: the tolerance has no reason")), "{f:?}");
+}
+
+#[test]
+fn a_skip_without_reason_is_refused() {
+    let yaml = GOOD.replace("    title: a check\n", "    title: a check\n    skip: true\n");
+    let f = findings(&yaml, true);
+    assert!(f.iter().any(|m| m.contains("check k1: a skip needs a reason")), "{f:?}");
+    let yaml = GOOD.replace("category: code verification\n", "category: code verification\nskip: \"\"\n");
+    let f = findings(&yaml, true);
+    assert!(f.iter().any(|m| m.contains("a skip needs a reason")), "{f:?}");
+}
+
+#[test]
+fn a_reference_file_without_provenance_is_refused() {
+    let f = findings(GOOD, false);
+    assert!(f.iter().any(|m| m.contains("check k2: reference file") && m.contains("no provenance")), "{f:?}");
+    assert!(f.iter().any(|m| m.contains("table.csv: reference file without provenance")), "{f:?}");
+}
+
+#[test]
+fn duplicate_requirement_ids_are_refused() {
+    let root = scratch(GOOD, true);
+    let other = root.join("verification/cases/suite/other");
+    std::fs::create_dir_all(&other).unwrap();
+    std::fs::write(other.join("case.yaml"), GOOD.replace("id: c1", "id: c2")).unwrap();
+    let repo = Repo { root: root.clone() };
+    let (cases, _) = load_cases(&repo.cases_dir());
+    let f: Vec<String> = lint(&repo, &cases).iter().map(|f| f.to_string()).collect();
+    let _ = std::fs::remove_dir_all(root);
+    assert!(f.iter().any(|m| m.contains("duplicate requirement id \"REQ-1\"")), "{f:?}");
+}
+
+#[test]
+fn unknown_scenes_and_missing_reference_files_are_refused() {
+    let f = findings(&GOOD.replace("measure: {metric: round_trip_max_rel}\n    reference: {kind: analytical", "measure: {scene: nope, metric: x}\n    reference: {kind: analytical"), true);
+    assert!(f.iter().any(|m| m.contains("no scene \"nope\"")), "{f:?}");
+    let f = findings(&GOOD.replace("thing/table.csv", "thing/missing.csv"), true);
+    assert!(f.iter().any(|m| m.contains("does not exist")), "{f:?}");
+}
+
+fn parse_error(yaml: &str) -> String {
+    match parse_case(yaml, Path::new("cases/x/case.yaml")) {
+        Ok(_) => panic!("expected an error for:\n{yaml}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn malformed_case_files_give_file_line_column() {
+    // Unknown key on line 6 (GOOD starts with an empty line).
+    let e = parse_error(&GOOD.replace("category: code verification\n", "category: code verification\ncolour: red\n"));
+    assert!(e.starts_with("cases/x/case.yaml:6:"), "{e}");
+    assert!(e.contains("colour"), "{e}");
+    // Wrong type: a tolerance that is not a number.
+    let e = parse_error(&GOOD.replace("absolute: 1.0e-12", "absolute: tiny"));
+    assert!(e.starts_with("cases/x/case.yaml:13:27: invalid floating point"), "{e}");
+    // Unknown category.
+    let e = parse_error(&GOOD.replace("code verification", "vibes"));
+    assert!(e.starts_with("cases/x/case.yaml:5:"), "{e}");
+    // Broken YAML syntax.
+    let e = parse_error("id: [unclosed\ntitle: x\n");
+    assert!(e.starts_with("cases/x/case.yaml:"), "{e}");
+    // Missing field.
+    let e = parse_error("id: x\ntitle: y\n");
+    assert!(e.contains("cases/x/case.yaml"), "{e}");
+}
