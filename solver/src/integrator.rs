@@ -2,9 +2,10 @@
 //! and the contact law, eqs. (19)-(21), following the solution procedure of section 3.5.
 //! See `ALGORITHM.md` section 6 for the exact order of operations.
 
+use crate::assembly::Assembly;
 use crate::contact::{solve_contact_force, LineContactLaw};
 use crate::element::{
-    element_max_eigenvalue, element_response, gather, lumped_masses, scatter_add, ElementEnergy,
+    element_max_eigenvalue, element_response, gather, lumped_masses, ElementEnergy,
     Formulation,
 };
 use crate::energy::{BalanceMonitor, Energies};
@@ -47,6 +48,8 @@ pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     /// Precomputed element stiffness, used instead of the stress path when the material is
     /// linear elastic (see [`PlateModel::with_linear_kernel`]).
     pub linear: Option<LinearKernel>,
+    /// Chunked (optionally multithreaded) assembly buffers.
+    pub assembly: Assembly,
 }
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
@@ -63,25 +66,32 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             mass,
             inverse_mass,
             linear: None,
+            assembly: Assembly::for_mesh(n),
         }
     }
 
     /// Internal forces at `u` into `f` (overwritten), updating the material states.
     pub fn internal_forces(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
-        if let Some(linear) = &self.linear {
-            return linear.internal_forces(&self.formulation, u, f);
+        let PlateModel {
+            formulation,
+            material,
+            states,
+            linear,
+            assembly,
+            ..
+        } = self;
+        let (formulation, material) = (&*formulation, &*material);
+        let nodes = |e: usize| formulation.nodes(e);
+        match linear {
+            Some(k) => assembly.assemble(states, F::POINTS, nodes, |e, _| k.element(formulation, e, u), f),
+            None => assembly.assemble(
+                states,
+                F::POINTS,
+                nodes,
+                |e, states| element_response(formulation, material, e, &gather(formulation.nodes(e), u), states),
+                f,
+            ),
         }
-        f.fill(0.0);
-        let mut energy = ElementEnergy::default();
-        let p = F::POINTS;
-        for (e, states) in self.states.chunks_exact_mut(p).enumerate().take(self.formulation.n_elements()) {
-            let nodes = self.formulation.nodes(e);
-            let ue = gather(nodes, u);
-            let (fe, en) = element_response(&self.formulation, &self.material, e, &ue, states);
-            scatter_add(nodes, &fe, f);
-            energy += en;
-        }
-        energy
     }
 
     /// Switches the internal forces to precomputed element stiffness matrices. Only valid

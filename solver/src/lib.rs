@@ -6,6 +6,7 @@
 //! [`scene`] (input), [`mesh`], [`element`], [`material`], [`contact`], [`impactor`],
 //! [`integrator`] (the time loop), [`energy`], [`summary`], [`output`] (files).
 
+pub mod assembly;
 pub mod contact;
 pub mod element;
 pub mod energy;

@@ -5,7 +5,7 @@
 
 use std::collections::HashMap;
 
-use crate::element::{element_stiffness, gather, scatter_add, ElementEnergy, Formulation};
+use crate::element::{element_stiffness, gather, ElementEnergy, ElementVector, Formulation};
 use crate::material::Elastic;
 use crate::mesh::Mesh;
 
@@ -45,30 +45,28 @@ impl LinearKernel {
         self.matrices.len()
     }
 
-    /// Internal forces `K u` into `f` (overwritten) with the strain and hourglass energies.
-    pub fn internal_forces<F: Formulation>(&self, formulation: &F, u: &[f64], f: &mut [f64]) -> ElementEnergy {
-        f.fill(0.0);
-        let mut energy = ElementEnergy::default();
-        for (e, &m) in self.matrix_of.iter().enumerate() {
-            let nodes = formulation.nodes(e);
-            let ue = gather(nodes, u);
-            let k = &self.matrices[m as usize];
-            let mut fe = [0.0; 8];
-            let mut work = 0.0;
-            for i in 0..8 {
-                let mut s = 0.0;
-                for j in 0..8 {
-                    s += k[i][j] * ue[j];
-                }
-                fe[i] = s;
-                work += s * ue[i];
+    /// Internal forces `K_e u_e` of element `e` with its strain and hourglass energies.
+    #[inline(always)]
+    pub fn element<F: Formulation>(&self, formulation: &F, e: usize, u: &[f64]) -> (ElementVector, ElementEnergy) {
+        let ue = gather(formulation.nodes(e), u);
+        let k = &self.matrices[self.matrix_of[e] as usize];
+        let mut fe = [0.0; 8];
+        let mut work = 0.0;
+        for i in 0..8 {
+            let mut s = 0.0;
+            for j in 0..8 {
+                s += k[i][j] * ue[j];
             }
-            let hourglass = formulation.hourglass_energy(e, &ue);
-            energy.strain += 0.5 * work - hourglass;
-            energy.hourglass += hourglass;
-            scatter_add(nodes, &fe, f);
+            fe[i] = s;
+            work += s * ue[i];
         }
-        energy
+        let hourglass = formulation.hourglass_energy(e, &ue);
+        let energy = ElementEnergy {
+            strain: 0.5 * work - hourglass,
+            plastic_work: 0.0,
+            hourglass,
+        };
+        (fe, energy)
     }
 }
 

@@ -209,3 +209,20 @@ fn the_pulse_ends_where_the_force_stops_being_applied() {
     let expected = 86.5e3 * 7999.5 * 1.25e-7;
     assert!((s.impulse - expected).abs() < 1e-9 * expected, "{} vs {expected}", s.impulse);
 }
+
+/// Multithreaded assembly (meshes of >= 1024 elements) must give the same bits on one
+/// thread and on two: the chunking and the summation order do not depend on the threads.
+#[test]
+fn results_are_bit_identical_on_one_and_two_threads() {
+    let mut scene = small(PLASTIC);
+    scene.mesh.nx = 64;
+    scene.mesh.ny = 16;
+    scene.time.end = End::At(2e-4);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| run(&scene))
+    };
+    let (one, two) = (on(1), on(2));
+    assert!(one.history.values.iter().zip(&two.history.values).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_eq!(one.summary.max_energy_balance_error.to_bits(), two.summary.max_energy_balance_error.to_bits());
+}
