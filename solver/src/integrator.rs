@@ -11,11 +11,12 @@ use crate::element::{
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::impactor::RigidImpactor;
+use crate::load::PrescribedLoad;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::material::Elastic;
 use crate::mesh::{Mesh, PlateMesh};
 use crate::stiffness::LinearKernel;
-use crate::scene::{DtChoice, End, Load, Scene};
+use crate::scene::{DtChoice, End, Scene};
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this
 /// multiple of the largest energy the run was given.
@@ -287,14 +288,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let datum = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
     let force_node = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.force_node));
     let energy_consistent = force_node == datum;
-    let pulse = match &scene.load {
-        Load::Pulse(p) => Some(*p),
-        Load::Impactor(_) => None,
-    };
-    let pulse_force = |t: f64| match pulse {
-        Some(p) if t >= 0.0 && t < p.duration => p.force,
-        _ => 0.0,
-    };
+    let prescribed = PrescribedLoad::from_scene(&scene.load, &scene.plate, mesh);
     let (end_time, after_contact) = match scene.time.end {
         End::At(t) => (t, None),
         End::AfterContact { after, limit } => (limit, Some(after)),
@@ -346,10 +340,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let mut n: u64 = 0;
     loop {
         let t = n as f64 * dt;
-        let applied = match pulse {
-            Some(_) => pulse_force(t),
-            None => force,
-        };
+        let applied = prescribed.as_ref().map_or(force, |l| l.magnitude_at(t));
         // Contact intervals: [first t_n with F > 0, first later t_n with F = 0].
         if applied > 0.0 {
             if !in_contact {
@@ -381,8 +372,10 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         // 1-3: internal forces, accelerations, velocities at n + 1/2.
         let element_energy = model.internal_forces(&u, &mut f_int);
         plastic_work += s * element_energy.plastic_work;
-        let loaded_dof = 2 * force_node + 1;
-        f_int[loaded_dof] += applied / s; // f_ext - f_int with f_ext = -F/s on u_y
+        match &prescribed {
+            Some(load) => load.subtract_from(applied, &mut f_int),
+            None => f_int[2 * force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
+        }
         let half = if n == 0 { 0.5 } else { 1.0 };
         let mut twice_kinetic = 0.0;
         for d in 0..ndof {
@@ -481,7 +474,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         }
 
         // Displacements at n + 1.
-        let top_before = u[2 * mesh.top + 1];
+        let projection_before = prescribed.as_ref().map_or(0.0, |l| l.projection(&u));
         for d in 0..ndof {
             u[d] += dt * v[d];
         }
@@ -512,14 +505,13 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             }
             // t_{n+1} = (n + 1) dt exactly as the next step will compute it (t + dt can round
             // differently and misplace the end of the pulse).
-            _ => pulse_force((n + 1) as f64 * dt),
+            _ => prescribed.as_ref().map_or(0.0, |l| l.magnitude_at((n + 1) as f64 * dt)),
         };
-        if pulse.is_some() {
-            let top_after = u[2 * mesh.top + 1];
-            external_work += 0.5 * (applied + next_force) * (top_before - top_after);
+        if let Some(load) = &prescribed {
+            external_work += load.work(applied, next_force, projection_before, load.projection(&u));
         }
         totals.impulse += 0.5 * (applied + next_force) * dt;
-        force = if pulse.is_some() { 0.0 } else { next_force };
+        force = if prescribed.is_some() { 0.0 } else { next_force };
         n += 1;
     }
     let width = history.columns.len();

@@ -13,6 +13,7 @@ pub mod energy;
 pub mod error;
 pub mod impactor;
 pub mod integrator;
+pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod output;

@@ -1,7 +1,7 @@
 //! Structured quadrilateral mesh of the plate (half or full), its boundary conditions, the
 //! mid-span nodes and the lookup of probe points.
 
-use crate::scene::{MeshSettings, MidSpanNode, Model, Plate};
+use crate::scene::{Ends, MeshSettings, MidSpanNode, Model, Plate};
 
 /// Nodes and 4-node elements (counter-clockwise). Coordinates in m.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,15 +86,20 @@ impl PlateMesh {
             }
         }
         let mut fixed_dofs = vec![false; 2 * coords.len()];
+        let (fix_x, fix_y) = match plate.ends {
+            Ends::Clamped => (true, true),
+            Ends::Roller => (true, false),
+            Ends::Slider => (false, true),
+        };
         for j in 0..=ny {
-            let clamp = |dofs: &mut Vec<bool>, n: usize| {
-                dofs[2 * n] = true;
-                dofs[2 * n + 1] = true;
+            let support = |dofs: &mut Vec<bool>, n: usize| {
+                dofs[2 * n] |= fix_x;
+                dofs[2 * n + 1] |= fix_y;
             };
-            clamp(&mut fixed_dofs, node(0, j));
+            support(&mut fixed_dofs, node(0, j));
             match settings.model {
-                Model::Half => fixed_dofs[2 * node(nx, j)] = true,
-                Model::Full => clamp(&mut fixed_dofs, node(nx, j)),
+                Model::Half => fixed_dofs[2 * node(nx, j)] = true, // symmetry: u_x = 0
+                Model::Full => support(&mut fixed_dofs, node(nx, j)),
             }
         }
         PlateMesh {
@@ -119,6 +124,20 @@ impl PlateMesh {
             MidSpanNode::MidPlane => self.mid,
             MidSpanNode::TopSurface => self.top,
         }
+    }
+
+    /// Top-surface nodes with their tributary lengths along x (half of each adjacent
+    /// element edge), m.
+    pub fn top_nodes_with_tributary_length(&self) -> Vec<(usize, f64)> {
+        let first = self.ny * (self.nx + 1);
+        (0..=self.nx)
+            .map(|i| {
+                let x = |k: usize| self.mesh.coords[first + k][0];
+                let left = if i > 0 { x(i) - x(i - 1) } else { 0.0 };
+                let right = if i < self.nx { x(i + 1) - x(i) } else { 0.0 };
+                (first + i, 0.5 * (left + right))
+            })
+            .collect()
     }
 
     /// The point in the modelled part: in the half model, `x > L/2` is mirrored to `L - x`.
@@ -226,6 +245,7 @@ mod tests {
         length: 0.2,
         width: 0.2,
         thickness: 0.02,
+        ends: Ends::Clamped,
     };
 
     #[test]

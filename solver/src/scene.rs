@@ -32,14 +32,30 @@ pub struct SceneFile {
     pub output: OutputFile,
 }
 
-/// `plate: {length, width, thickness}`, all in m; `length` is clamp to clamp, results are
-/// totals over `width`.
+/// `plate: {length, width, thickness, ends}`, lengths in m; `length` is clamp to clamp,
+/// results are totals over `width`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlateFile {
     pub length: Num,
     pub width: Num,
     pub thickness: Num,
+    /// Support of the two ends (default clamped).
+    #[serde(default)]
+    pub ends: Ends,
+}
+
+/// How the ends of the plate (x = 0 and x = L) are held.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Ends {
+    /// `u_x = u_y = 0` (the paper).
+    #[default]
+    Clamped,
+    /// `u_x = 0`, `u_y` free (plane P waves through the thickness).
+    Roller,
+    /// `u_y = 0`, `u_x` free (plane S waves through the thickness).
+    Slider,
 }
 
 /// `material`: `density` kg/m^3, `youngs_modulus` Pa, `poisson_ratio` (-), optional `plasticity`.
@@ -133,6 +149,7 @@ pub enum Model {
 pub enum LoadFile {
     Impactor(ImpactorFile),
     Pulse(PulseFile),
+    Traction(TractionFile),
 }
 
 /// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s
@@ -177,6 +194,18 @@ pub enum MidSpanNode {
 #[serde(deny_unknown_fields)]
 pub struct PulseFile {
     pub force: Num,
+    pub duration: Num,
+}
+
+/// `traction: {normal: Pa, shear: Pa, duration: s}`: uniform on the whole top surface,
+/// rectangular in time; `normal` positive pushes down, `shear` positive pulls toward +x.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionFile {
+    #[serde(default)]
+    pub normal: Option<Num>,
+    #[serde(default)]
+    pub shear: Option<Num>,
     pub duration: Num,
 }
 
@@ -260,12 +289,13 @@ pub struct Scene {
     pub output: OutputSettings,
 }
 
-/// Plate dimensions, m.
+/// Plate dimensions (m) and end supports.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Plate {
     pub length: f64,
     pub width: f64,
     pub thickness: f64,
+    pub ends: Ends,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -309,6 +339,7 @@ pub struct MeshSettings {
 pub enum Load {
     Impactor(Impactor),
     Pulse(Pulse),
+    Traction(Traction),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -340,6 +371,14 @@ pub struct Pulse {
     /// N, whole width
     pub force: f64,
     /// s
+    pub duration: f64,
+}
+
+/// Uniform traction on the top surface, Pa, for `duration` s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traction {
+    pub normal: f64,
+    pub shear: f64,
     pub duration: f64,
 }
 
@@ -417,7 +456,7 @@ impl Scene {
     pub fn impactor(&self) -> Option<&Impactor> {
         match &self.load {
             Load::Impactor(i) => Some(i),
-            Load::Pulse(_) => None,
+            Load::Pulse(_) | Load::Traction(_) => None,
         }
     }
 }
@@ -445,6 +484,7 @@ struct Validator<'a> {
 }
 
 /// A validation rule: what a value must satisfy, in words.
+#[derive(Clone, Copy)]
 struct Rule {
     allowed: &'static str,
     ok: fn(f64) -> bool,
@@ -508,6 +548,7 @@ impl Validator<'_> {
             length: self.check(&file.plate.length, "plate.length", POSITIVE)?,
             width: self.check(&file.plate.width, "plate.width", POSITIVE)?,
             thickness: self.check(&file.plate.thickness, "plate.thickness", POSITIVE)?,
+            ends: file.plate.ends,
         };
         let material = self.material(file.material)?;
         let mesh = self.mesh(&file.mesh)?;
@@ -677,6 +718,33 @@ impl Validator<'_> {
 
     fn load(&self, load: LoadFile, plate: &Plate) -> Result<Load> {
         Ok(match load {
+            LoadFile::Traction(t) => {
+                let finite = Rule {
+                    allowed: "must be a finite number (Pa)",
+                    ok: f64::is_finite,
+                };
+                let normal = match &t.normal {
+                    Some(v) => self.check(v, "load.traction.normal", finite)?,
+                    None => 0.0,
+                };
+                let shear = match &t.shear {
+                    Some(v) => self.check(v, "load.traction.shear", finite)?,
+                    None => 0.0,
+                };
+                if normal == 0.0 && shear == 0.0 {
+                    return self.fail(
+                        &t.duration,
+                        "load.traction",
+                        "normal = shear = 0",
+                        "needs a non-zero normal or shear traction (Pa)",
+                    );
+                }
+                Load::Traction(Traction {
+                    normal,
+                    shear,
+                    duration: self.check(&t.duration, "load.traction.duration", POSITIVE)?,
+                })
+            }
             LoadFile::Pulse(p) => Load::Pulse(Pulse {
                 force: self.check(&p.force, "load.pulse.force", NON_NEGATIVE)?,
                 duration: self.check(&p.duration, "load.pulse.duration", POSITIVE)?,

@@ -81,7 +81,7 @@ mod tests {
     use crate::scene::{ElementKind, MeshSettings, Model, Plate};
 
     fn compare<F: Formulation>(make: impl Fn(&Mesh) -> F) {
-        let plate = Plate { length: 0.2, width: 0.2, thickness: 0.02 };
+        let plate = Plate { length: 0.2, width: 0.2, thickness: 0.02, ends: crate::scene::Ends::Clamped };
         let settings = MeshSettings {
             nx: 12,
             ny: 4,

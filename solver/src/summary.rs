@@ -85,6 +85,7 @@ impl Summary {
         });
         let contact_law = match &scene.load {
             Load::Pulse(_) => "pulse".to_string(),
+            Load::Traction(_) => "traction".to_string(),
             Load::Impactor(i) => match i.contact_law {
                 ContactLawChoice::Paper { length_unit } => {
                     format!("paper(length_unit={length_unit} m)")
