@@ -192,42 +192,51 @@ impl VonMises {
 impl ConstitutiveModel for VonMises {
     type State = PlasticState;
 
+    /// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
+    /// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
+    /// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly.
     #[inline]
     fn update(&self, strain: &Strain, state: &mut PlasticState) -> PointResponse {
-        let mut ee = Self::elastic_strain(strain, state);
-        let mut s = self.elastic.stress_of(&ee);
-        let mean = (s[0] + s[1] + s[2]) / 3.0;
-        let dev = [s[0] - mean, s[1] - mean, s[2] - mean, s[3]];
-        let q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])
-            + 3.0 * dev[3] * dev[3];
+        let mu = self.elastic.mu;
+        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
+        let p = &state.plastic_strain;
+        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
+        let trace = e[0] + e[1] + e[2];
+        let third = trace / 3.0;
+        let mut dev = [
+            2.0 * mu * (e[0] - third),
+            2.0 * mu * (e[1] - third),
+            2.0 * mu * (e[2] - third),
+            mu * (strain[3] - 2.0 * p[3]),
+        ];
+        let mean = bulk * trace;
+        let volumetric_energy = 0.5 * mean * trace;
+        let q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
         let k_old = state.eqps;
         let sy_old = self.flow.flow_stress(k_old);
         let mut plastic_work_density = 0.0;
+        let mut q2_final = q2;
         // Compare squares: most points are elastic and need no square root.
         if q2 > sy_old * sy_old {
             let q = q2.sqrt();
             // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
             let dk = self.plastic_increment(q, k_old).max(0.0);
-            // Flow direction 3/2 dev/q; plastic strain increment dk * that (tensor shear).
+            // Plastic strain increment dk * 3/2 dev/q (tensor shear).
             let r = 1.5 * dk / q;
-            let dp = [r * dev[0], r * dev[1], r * dev[2], r * dev[3]];
-            for (p, d) in state.plastic_strain.iter_mut().zip(dp) {
-                *p += d;
+            for (pk, d) in state.plastic_strain.iter_mut().zip(dev) {
+                *pk += r * d;
             }
+            let scale = 1.0 - 2.0 * mu * r; // q_new / q = 1 - 3 mu dk / q
+            for d in &mut dev {
+                *d *= scale;
+            }
+            q2_final = q2 * scale * scale;
             state.eqps = k_old + dk;
-            let m2 = 2.0 * self.elastic.mu;
-            s = [
-                s[0] - m2 * dp[0],
-                s[1] - m2 * dp[1],
-                s[2] - m2 * dp[2],
-                s[3] - m2 * dp[3],
-            ];
-            ee = Self::elastic_strain(strain, state);
             plastic_work_density = 0.5 * (sy_old + self.flow.flow_stress(state.eqps)) * dk;
         }
         PointResponse {
-            stress: s,
-            strain_energy_density: half_contraction(&s, &ee),
+            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
+            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
             plastic_work_density,
         }
     }
