@@ -265,6 +265,9 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
                 node_name(i.indentation_datum),
                 node_name(i.force_node)
             ),
+            // Load kinds added to the solver later are described by their Debug form.
+            #[allow(unreachable_patterns)]
+            other => format!("{other:?}"),
         },
     );
     m.insert(
@@ -437,7 +440,8 @@ pub fn apply_override(scene: &mut Scene, key: &str, v: &Value) -> Result<(), Str
                     p.duration = positive(v)?
                 }
             }
-            Load::Impactor(_) => return Err("the scene has no pulse".into()),
+            #[allow(unreachable_patterns)]
+            _ => return Err("the scene has no pulse".into()),
         },
         _ if key.starts_with("impactor.") => {
             let Load::Impactor(i) = &mut scene.load else {

@@ -39,6 +39,383 @@ pub fn environment(repo: &Repo, wall_s: f64, jobs: usize) -> serde_json::Value {
     })
 }
 
-pub fn write_report(_from: &Path, _out: &Path) -> anyhow::Result<Vec<PathBuf>> {
-    anyhow::bail!("not yet")
+const HTML_TEMPLATE: &str = include_str!("../templates/report.html.j2");
+const MD_TEMPLATE: &str = include_str!("../templates/report.md.j2");
+
+type Series = (String, Vec<(f64, f64)>, bool);
+
+/// An SVG line plot (references dashed) as a string, or a note when it cannot be drawn.
+pub fn svg_plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String {
+    match try_plot(title, xlabel, ylabel, series) {
+        Ok(s) => s,
+        Err(e) => format!("<p class=\"small\">plot {title:?} not drawn: {e}</p>"),
+    }
+}
+
+fn try_plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> Result<String, String> {
+    use plotters::prelude::*;
+    let pts = series.iter().flat_map(|s| s.1.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for p in pts {
+        x0 = x0.min(p.0);
+        x1 = x1.max(p.0);
+        y0 = y0.min(p.1);
+        y1 = y1.max(p.1);
+    }
+    if !(x0.is_finite() && y0.is_finite()) {
+        return Err("no data".into());
+    }
+    if x1 <= x0 {
+        x1 = x0 + 1.0;
+    }
+    if y1 <= y0 {
+        let pad = if y0 == 0.0 { 1.0 } else { 0.05 * y0.abs() };
+        y0 -= pad;
+        y1 += pad;
+    }
+    let pad = 0.05 * (y1 - y0);
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, (560, 340)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(title, ("sans-serif", 15))
+            .margin(8)
+            .x_label_area_size(32)
+            .y_label_area_size(62)
+            .build_cartesian_2d(x0..x1, (y0 - pad)..(y1 + pad))
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(xlabel)
+            .y_desc(ylabel)
+            .x_labels(6)
+            .y_labels(6)
+            .x_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.3}"))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (i, (label, data, dashed)) in series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            let data: Vec<(f64, f64)> = downsample(data, 1200);
+            if *dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(data, 6, 4, color.stroke_width(2)))
+                    .map_err(|e| e.to_string())?
+                    .label(label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+            } else {
+                chart
+                    .draw_series(LineSeries::new(data.clone(), color.stroke_width(1)))
+                    .map_err(|e| e.to_string())?
+                    .label(label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+                if data.len() <= 12 {
+                    chart
+                        .draw_series(data.iter().map(|p| Circle::new(*p, 3, color.filled())))
+                        .map_err(|e| e.to_string())?;
+                }
+            }
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 11))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(text)
+}
+
+fn downsample(d: &[(f64, f64)], n: usize) -> Vec<(f64, f64)> {
+    if d.len() <= n {
+        return d.to_vec();
+    }
+    let step = d.len().div_ceil(n);
+    let mut v: Vec<(f64, f64)> = d.iter().step_by(step).copied().collect();
+    if let Some(last) = d.last() {
+        v.push(*last);
+    }
+    v
+}
+
+fn fmt(x: Option<f64>) -> String {
+    crate::runner::num(x)
+}
+
+fn get_f(v: &serde_json::Value) -> Option<f64> {
+    v.as_f64()
+}
+
+/// History plots of a case from the runs folder, with references overlaid.
+fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let suite = c["suite"].as_str().unwrap_or("");
+    let case = c["case"].as_str().unwrap_or("");
+    let dir = runs.join(suite).join(case);
+    for p in c["plots"].as_array().into_iter().flatten() {
+        let title = p["title"].as_str().unwrap_or("");
+        let scale = p["scale"].as_f64().unwrap_or(1.0);
+        let unit = p["unit"].as_str().unwrap_or("");
+        let scenes: Vec<&str> = p["scenes"].as_array().into_iter().flatten().filter_map(|s| s.as_str()).collect();
+        let columns: Vec<&str> = p["columns"].as_array().into_iter().flatten().filter_map(|s| s.as_str()).collect();
+        let mut series: Vec<Series> = Vec::new();
+        let load = |path: &Path, col: &str| {
+            crate::check::read_csv_columns(path, col)
+                .map(|(t, v)| t.iter().zip(&v).map(|(t, v)| (t * 1e3, v * scale)).collect::<Vec<_>>())
+        };
+        if let Some(col) = p["column"].as_str() {
+            for s in &scenes {
+                if let Ok(d) = load(&dir.join(s).join("history.csv"), col) {
+                    series.push((s.to_string(), d, false));
+                }
+            }
+            for r in p["references"].as_array().into_iter().flatten().filter_map(|s| s.as_str()) {
+                let path = if r.starts_with("reference-data") { root.join(r) } else { dir.join(r).join("history.csv") };
+                if let Ok(d) = load(&path, col) {
+                    let label = if r.starts_with("reference-data") { format!("ref: {}", r.trim_start_matches("reference-data/").trim_end_matches("/history.csv")) } else { format!("ref: {r}") };
+                    series.push((label, d, true));
+                }
+            }
+            let ylabel = if unit.is_empty() { col.to_string() } else { format!("{col} ({unit})") };
+            out.push((title.to_string(), svg_plot(title, "time (ms)", &ylabel, &series)));
+        } else {
+            for s in &scenes {
+                let mut series: Vec<Series> = Vec::new();
+                for col in &columns {
+                    if let Ok(d) = load(&dir.join(s).join("history.csv"), col) {
+                        series.push((col.to_string(), d, false));
+                    }
+                }
+                out.push((format!("{title} ({s})"), svg_plot(title, "time (ms)", unit, &series)));
+            }
+        }
+    }
+    // Convergence plots: log10 |f - f_extrapolated| against log10 h (h = 1 / level).
+    if let Some(series) = c["series"].as_object() {
+        for (name, sd) in series {
+            let levels: Vec<f64> = sd["levels"].as_array().into_iter().flatten().filter_map(get_f).collect();
+            for (metric, vals) in sd["metrics"].as_object().into_iter().flatten() {
+                let f: Vec<f64> = vals.as_array().into_iter().flatten().filter_map(get_f).collect();
+                let n = f.len();
+                if n < 3 || levels.len() != n {
+                    continue;
+                }
+                let r = levels[n - 1] / levels[n - 2];
+                let (p, _) = crate::check::order_and_gci(f[n - 3], f[n - 2], f[n - 1], r);
+                let title = format!("{name}: {metric}, observed order p = {p:.2}");
+                if p.is_finite() && p > 0.0 {
+                    let f_ext = f[n - 1] + (f[n - 1] - f[n - 2]) / (r.powf(p) - 1.0);
+                    let pts: Vec<(f64, f64)> = levels
+                        .iter()
+                        .zip(&f)
+                        .map(|(l, v)| ((1.0 / l).log10(), (v - f_ext).abs().log10()))
+                        .filter(|q| q.1.is_finite())
+                        .collect();
+                    let (hx, hy) = pts[pts.len() - 1];
+                    let fit: Vec<(f64, f64)> = pts.iter().map(|q| (q.0, hy + p * (q.0 - hx))).collect();
+                    out.push((
+                        title.clone(),
+                        svg_plot(&title, "log10 (h / h_base)", "log10 |f - f_extrapolated|", &[
+                            ("runs".into(), pts, false),
+                            (format!("slope p = {p:.2}"), fit, true),
+                        ]),
+                    ));
+                } else {
+                    let pts: Vec<(f64, f64)> = levels.iter().zip(&f).map(|(l, v)| ((1.0 / l).log10(), *v)).collect();
+                    out.push((title.clone(), svg_plot(&title, "log10 (h / h_base)", metric, &[("runs".into(), pts, false)])));
+                }
+            }
+        }
+    }
+    out
+}
+
+fn slug(s: &str) -> String {
+    s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect()
+}
+
+/// Writes index.html, report.md and plots/*.svg from a verify output folder.
+pub fn write_report(from: &Path, out: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    use anyhow::Context;
+    let results_path = from.join("results.json");
+    let results: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(&results_path).with_context(|| format!("{}: run `impact verify --out DIR` first", results_path.display()))?,
+    )
+    .with_context(|| format!("{}", results_path.display()))?;
+    let env: serde_json::Value = std::fs::read_to_string(from.join("environment.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str(&t).ok())
+        .unwrap_or_else(|| serde_json::json!({}));
+    let repo = std::env::current_dir()
+        .ok()
+        .and_then(|d| Repo::find(&d))
+        .unwrap_or_else(Repo::this);
+    let runs = from.join("runs");
+    std::fs::create_dir_all(out.join("plots"))?;
+    let mut cases = Vec::new();
+    let mut energy_plots = Vec::new();
+    let mut files = Vec::new();
+    for c in results["cases"].as_array().into_iter().flatten() {
+        let checks: Vec<serde_json::Value> = c["checks"].as_array().cloned().unwrap_or_default();
+        let count = |s: &str| checks.iter().filter(|k| k["status"] == s).count();
+        let (ok, fail, skip) = (count("OK"), count("FAIL"), count("SKIP"));
+        let status = if fail > 0 { "FAIL" } else if ok == 0 { "SKIP" } else { "OK" };
+        let mut refs: Vec<String> = checks
+            .iter()
+            .map(|k| format!("{}: {}", k["reference_kind"].as_str().unwrap_or(""), k["reference_source"].as_str().unwrap_or("")))
+            .collect();
+        refs.sort();
+        refs.dedup();
+        let mut modelling = Vec::new();
+        for (scene, info) in c["modelling"].as_object().into_iter().flatten() {
+            for (k, v) in info.as_object().into_iter().flatten() {
+                modelling.push(serde_json::json!({"scene": scene, "key": k, "value": v}));
+            }
+        }
+        let job_errors: Vec<String> = c["job_errors"].as_object().into_iter().flatten().map(|(k, v)| format!("{k}: {}", v.as_str().unwrap_or(""))).collect();
+        let rows: Vec<serde_json::Value> = checks
+            .iter()
+            .map(|k| {
+                let compare = match k["compare"].as_str() {
+                    Some("at_most") => "<= ",
+                    Some("at_least") => ">= ",
+                    _ => "",
+                };
+                let error = match get_f(&k["error"]) {
+                    Some(e) => format!("{}{}", fmt(Some(e)), if k["error_kind"] == "relative" { " rel" } else { "" }),
+                    None => "-".into(),
+                };
+                serde_json::json!({
+                    "id": k["id"], "title": k["title"], "status": k["status"],
+                    "computed": fmt(get_f(&k["computed"])), "reference": fmt(get_f(&k["reference"])),
+                    "compare": compare, "kind": k["reference_kind"], "source": k["reference_source"],
+                    "error": error, "tolerance": k["tolerance"], "reason": k["tolerance_reason"],
+                    "message": k["message"], "known": k["known_failure"],
+                })
+            })
+            .collect();
+        let plots = case_plots(c, &runs, &repo.root);
+        let mut plot_files = Vec::new();
+        let suite = c["suite"].as_str().unwrap_or("");
+        for (i, (title, svg)) in plots.iter().enumerate() {
+            if svg.starts_with("<svg") || svg.starts_with("<?xml") {
+                let name = format!("plots/{}-{}-{i}.svg", slug(suite), slug(c["case"].as_str().unwrap_or("")));
+                std::fs::write(out.join(&name), svg)?;
+                plot_files.push(name);
+            }
+            if suite == "energy" && title.to_lowercase().contains("energ") {
+                energy_plots.push(svg.clone());
+            }
+        }
+        cases.push(serde_json::json!({
+            "suite": c["suite"], "case": c["case"], "id": c["id"], "title": c["title"],
+            "anchor": slug(&format!("{}-{}", suite, c["case"].as_str().unwrap_or(""))),
+            "requirement_id": c["requirement_id"], "requirement": c["requirement"],
+            "category": c["category"], "heavy": c["heavy"], "problem": c["problem"],
+            "ok": ok, "fail": fail, "skip": skip, "status": status,
+            "references": refs, "modelling": modelling, "job_errors": job_errors,
+            "checks": rows, "plots": plots.iter().map(|p| p.1.clone()).collect::<Vec<_>>(), "plot_files": plot_files,
+        }));
+    }
+    let (table1, table2) = paper_tables(&results, &repo.root);
+    let envv = serde_json::json!({
+        "commit": env["commit"].as_str().unwrap_or("unknown"),
+        "rustc": env["rustc"].as_str().unwrap_or("unknown"),
+        "machine": env["machine"].as_str().unwrap_or("unknown"),
+        "date_utc": env["date_utc"].as_str().unwrap_or("unknown"),
+        "jobs": env["jobs"].as_u64().unwrap_or(0),
+        "wall": format!("{:.1}", env["wall_time_s"].as_f64().unwrap_or(0.0)),
+    });
+    let ctx = serde_json::json!({
+        "source": from.display().to_string(),
+        "counts": results["counts"],
+        "cases": cases,
+        "table1": table1,
+        "table2": table2,
+        "energy_plots": energy_plots,
+        "env": envv,
+        "now": command("date", &["-u", "+%Y-%m-%dT%H:%M:%SZ"], &repo.root),
+    });
+    let mut jinja = minijinja::Environment::new();
+    jinja.add_template("html", HTML_TEMPLATE)?;
+    jinja.add_template("md", MD_TEMPLATE)?;
+    let html = jinja.get_template("html")?.render(minijinja::Value::from_serialize(&ctx))?;
+    let mut md_env = minijinja::Environment::new();
+    md_env.set_auto_escape_callback(|_| minijinja::AutoEscape::None);
+    md_env.add_template("md", MD_TEMPLATE)?;
+    let md = md_env.get_template("md")?.render(minijinja::Value::from_serialize(&ctx))?;
+    let _ = jinja;
+    std::fs::write(out.join("index.html"), html)?;
+    std::fs::write(out.join("report.md"), md)?;
+    files.push(out.join("index.html"));
+    files.push(out.join("report.md"));
+    Ok(files)
+}
+
+fn rel(c: Option<f64>, p: Option<f64>) -> String {
+    match (c, p) {
+        (Some(c), Some(p)) if p != 0.0 => format!("{:+.1} %", 100.0 * (c / p - 1.0)),
+        _ => "-".into(),
+    }
+}
+
+fn short(x: Option<f64>) -> String {
+    x.map_or("-".into(), |v| format!("{v:.4}"))
+}
+
+/// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
+fn paper_tables(results: &serde_json::Value, root: &Path) -> (Vec<serde_json::Value>, Vec<serde_json::Value>) {
+    let find = |suite: &str| results["cases"].as_array().into_iter().flatten().find(|c| c["suite"] == suite).cloned();
+    let metric = |c: &Option<serde_json::Value>, scene: &str, key: &str| c.as_ref().and_then(|c| c["metrics"][scene][key].as_f64());
+    let t1 = find("table1");
+    let path1 = root.join("reference-data/paper/table1.csv");
+    let mut table1 = Vec::new();
+    let rows1 = [
+        ("impulse", "Impulse (N s)", "impulse_Ns", 1.0),
+        ("max_contact_load", "Max. contact load (kN)", "peak_contact_force_N", 1e-3),
+        ("max_plate_displacement", "Max. displacement (mm)", "max_plate_displacement_m", 1e3),
+        ("contact_duration", "Contact duration (ms)", "contact_duration_s", 1e3),
+        ("impactor_final_velocity", "Final impactor velocity (m/s)", "final_impactor_velocity_mps", 1.0),
+        ("max_effective_stress_point_a", "Max. von Mises at A (MPa)", "max_von_mises_Pa.A", 1e-6),
+    ];
+    for (q, label, key, scale) in rows1 {
+        let mut sel = std::collections::BTreeMap::new();
+        sel.insert("quantity".to_string(), q.to_string());
+        let p = |col: &str| crate::check::table_value(&path1, &sel, col).ok();
+        let ce = metric(&t1, "elastic", key).map(|v| v * scale);
+        let cp = metric(&t1, "plastic", key).map(|v| v * scale);
+        let (pe, pp) = (p("elastic"), p("elasto_plastic"));
+        table1.push(serde_json::json!({
+            "label": label, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
+            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp),
+            "pr": short(p("ratio_ep_e")), "cr": short(cp.zip(ce).map(|(a, b)| a / b)),
+        }));
+    }
+    let t2 = find("momentum-impulse");
+    let path2 = root.join("reference-data/paper/table2.csv");
+    let mut table2 = Vec::new();
+    for v in ["1.25", "2.5", "5", "7.5", "10", "12.5", "15"] {
+        let mut sel = std::collections::BTreeMap::new();
+        sel.insert("initial_velocity_mps".to_string(), v.to_string());
+        let p = |col: &str| crate::check::table_value(&path2, &sel, col).ok();
+        let ce = metric(&t2, &format!("elastic-v{v}"), "impulse_Ns");
+        let cp = metric(&t2, &format!("plastic-v{v}"), "impulse_Ns");
+        let id = [format!("elastic-v{v}"), format!("plastic-v{v}")]
+            .iter()
+            .filter_map(|s| {
+                let i = metric(&t2, s, "impulse_Ns")?;
+                let m = metric(&t2, s, "momentum_change_Ns")?;
+                Some((i - m).abs() / i)
+            })
+            .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
+        let (pe, pp) = (p("elastic_impulse_Ns"), p("ep_impulse_Ns"));
+        table2.push(serde_json::json!({
+            "v": v, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
+            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp), "id": fmt(id),
+        }));
+    }
+    (table1, table2)
 }

@@ -55,6 +55,14 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     assert_eq!(junit.matches("<failure").count(), m.counts.fail);
     assert_eq!(junit.matches("<skipped").count(), m.counts.skip);
     assert!(!junit.contains("wall_time"));
+    // The report: self-contained HTML with inline SVG plots, and markdown.
+    impact_verification::report::write_report(&out, &out).unwrap();
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("Requirements traceability matrix") && html.contains("Table 1 (m = 18 kg"));
+    assert!(html.matches("<svg").count() >= 10, "inline SVG plots expected");
+    let offline = html.replace("http://www.w3.org/2000/svg", ""); // the SVG namespace, not a fetch
+    assert!(!offline.contains("<script") && !offline.contains("http://") && !offline.contains("https://"), "the report must open offline");
+    assert!(std::fs::read_to_string(out.join("report.md")).unwrap().contains("| REQ-LIT-TABLE1 |"));
     let _ = std::fs::remove_dir_all(&out);
 
     // Snapshots, one per case.
