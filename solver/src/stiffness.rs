@@ -10,15 +10,15 @@ use crate::material::Elastic;
 use crate::mesh::Mesh;
 
 pub struct LinearKernel {
-    /// Distinct element stiffness matrices, N/m.
-    matrices: Vec<[[f64; 8]; 8]>,
+    /// Distinct element stiffness matrices, N/m, column-major: `columns[j][i] = K_ij`.
+    columns: Vec<[[f64; 8]; 8]>,
     /// Index into `matrices` per element.
     matrix_of: Vec<u32>,
 }
 
 impl LinearKernel {
     pub fn new<F: Formulation>(formulation: &F, elastic: &Elastic, mesh: &Mesh) -> LinearKernel {
-        let mut matrices = Vec::new();
+        let mut columns = Vec::new();
         let mut seen: HashMap<[u64; 6], u32> = HashMap::new();
         let matrix_of = (0..formulation.n_elements())
             .map(|e| {
@@ -29,36 +29,36 @@ impl LinearKernel {
                     (c[a][k] - c[0][k]).to_bits()
                 });
                 *seen.entry(key).or_insert_with(|| {
-                    matrices.push(element_stiffness(formulation, elastic, e));
-                    (matrices.len() - 1) as u32
+                    let k = element_stiffness(formulation, elastic, e);
+                    columns.push(std::array::from_fn(|j| std::array::from_fn(|i| k[i][j])));
+                    (columns.len() - 1) as u32
                 })
             })
             .collect();
-        LinearKernel {
-            matrices,
-            matrix_of,
-        }
+        LinearKernel { columns, matrix_of }
     }
 
     /// Number of distinct element matrices.
     pub fn n_matrices(&self) -> usize {
-        self.matrices.len()
+        self.columns.len()
     }
 
     /// Internal forces `K_e u_e` of element `e` with its strain and hourglass energies.
     #[inline(always)]
     pub fn element<F: Formulation>(&self, formulation: &F, e: usize, u: &[f64]) -> (ElementVector, ElementEnergy) {
         let ue = gather(formulation.nodes(e), u);
-        let k = &self.matrices[self.matrix_of[e] as usize];
+        // Column by column: each lane of `fe` is an independent sum, which the compiler can
+        // vectorise without reordering any addition (so the result is the same bits).
+        let columns = &self.columns[self.matrix_of[e] as usize];
         let mut fe = [0.0; 8];
+        for (column, &uj) in columns.iter().zip(&ue) {
+            for i in 0..8 {
+                fe[i] += column[i] * uj;
+            }
+        }
         let mut work = 0.0;
         for i in 0..8 {
-            let mut s = 0.0;
-            for j in 0..8 {
-                s += k[i][j] * ue[j];
-            }
-            fe[i] = s;
-            work += s * ue[i];
+            work += fe[i] * ue[i];
         }
         let hourglass = formulation.hourglass_energy(e, &ue);
         let energy = ElementEnergy {
