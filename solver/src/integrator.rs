@@ -199,6 +199,7 @@ pub struct RunTotals {
     pub impulse: f64,
     pub peak_force: f64,
     pub max_downward_mid: f64,
+    pub max_downward_bottom: f64,
     pub contact_intervals: Vec<[f64; 2]>,
     pub final_impactor_velocity: Option<f64>,
     pub max_von_mises: Vec<(String, f64)>,
@@ -320,6 +321,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         impulse: 0.0,
         peak_force: 0.0,
         max_downward_mid: 0.0,
+        max_downward_bottom: 0.0,
         contact_intervals: Vec::new(),
         final_impactor_velocity: None,
         max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
@@ -434,6 +436,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         }
         let mid_uy = u[2 * mesh.mid + 1];
         totals.max_downward_mid = totals.max_downward_mid.min(mid_uy);
+        totals.max_downward_bottom = totals.max_downward_bottom.min(u[2 * mesh.bottom + 1]);
         let want_row = rows.due(n, dt) || stop.is_some();
         for (p, max) in probes.iter().zip(totals.max_von_mises.iter_mut()) {
             max.1 = max.1.max(von_mises(&model.point_stress(p.element, p.point, &u)));
