@@ -1,0 +1,411 @@
+//! Markdown pages written by other tools (the reconstruction's report.md, the benchmarks'
+//! stability.md) embedded in the V&V report: as Markdown in report.md (headings shifted under
+//! the report's section, links to local files rewritten to copies next to report.md) and as
+//! HTML in index.html (rendered with pulldown-cmark; local images inlined as data URIs so the
+//! page stays self-contained).
+
+use std::ops::Range;
+use std::path::{Component, Path, PathBuf};
+
+use pulldown_cmark::{CowStr, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
+
+/// How a page is embedded.
+pub struct Embed<'a> {
+    /// The folder the page's relative links are relative to (the page's own folder).
+    pub base: &'a Path,
+    /// The heading level the page's top-level headings get (its other headings follow).
+    pub top_level: usize,
+    /// Prefix of the heading ids in the HTML (keeps them apart from the report's own).
+    pub anchor_prefix: &'a str,
+    /// The report folder (where index.html and report.md are written).
+    pub out: &'a Path,
+    /// Subfolder of `out` the linked local files are copied to.
+    pub copy_to: &'a str,
+}
+
+/// A page ready for both outputs.
+#[derive(Debug, Clone, Default)]
+pub struct Embedded {
+    pub html: String,
+    pub md: String,
+    /// Files copied under `out` (relative paths), for the log.
+    pub copied: Vec<String>,
+    /// Relative links whose file was not found next to the page.
+    pub missing: Vec<String>,
+}
+
+fn options() -> Options {
+    Options::ENABLE_TABLES | Options::ENABLE_FOOTNOTES | Options::ENABLE_STRIKETHROUGH | Options::ENABLE_TASKLISTS
+}
+
+/// A link or image destination that names a file next to the page: its path and its path
+/// relative to `base` ('/'-separated), and the `#fragment` it carried. None for URLs, anchors,
+/// absolute paths and paths that leave `base`.
+fn local(base: &Path, url: &str) -> Option<(PathBuf, String, String)> {
+    if url.is_empty() || url.starts_with('#') || url.starts_with('/') || url.contains(':') {
+        return None;
+    }
+    let (path, frag) = match url.find(['#', '?']) {
+        Some(i) => (&url[..i], &url[i..]),
+        None => (url, ""),
+    };
+    let path = path.replace("%20", " ");
+    let rel = Path::new(&path);
+    if rel.components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
+        return None;
+    }
+    let rel: Vec<String> = rel
+        .components()
+        .filter_map(|c| match c {
+            Component::Normal(s) => Some(s.to_string_lossy().into_owned()),
+            _ => None,
+        })
+        .collect();
+    if rel.is_empty() {
+        return None;
+    }
+    Some((base.join(rel.join("/")), rel.join("/"), frag.to_string()))
+}
+
+fn is_svg(p: &Path) -> bool {
+    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("svg"))
+}
+
+fn mime(p: &Path) -> Option<&'static str> {
+    match p.extension()?.to_str()?.to_ascii_lowercase().as_str() {
+        "svg" => Some("image/svg+xml"),
+        "png" => Some("image/png"),
+        "jpg" | "jpeg" => Some("image/jpeg"),
+        "gif" => Some("image/gif"),
+        _ => None,
+    }
+}
+
+/// Standard base64 (RFC 4648, with padding).
+pub fn base64(data: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::with_capacity(data.len().div_ceil(3) * 4);
+    for c in data.chunks(3) {
+        let b = [c[0], *c.get(1).unwrap_or(&0), *c.get(2).unwrap_or(&0)];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for (i, shift) in [18, 12, 6, 0].into_iter().enumerate() {
+            if i <= c.len() {
+                s.push(A[((n >> shift) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// HTML-escapes text for an attribute or element content.
+pub fn escape(s: &str) -> String {
+    let mut o = String::with_capacity(s.len());
+    for ch in s.chars() {
+        match ch {
+            '&' => o.push_str("&amp;"),
+            '<' => o.push_str("&lt;"),
+            '>' => o.push_str("&gt;"),
+            '"' => o.push_str("&quot;"),
+            '\'' => o.push_str("&#39;"),
+            c => o.push(c),
+        }
+    }
+    o
+}
+
+/// A file as an `<img>` with a data URI (nothing to fetch; its ids and styles stay its own).
+pub fn img_data_uri(path: &Path, alt: &str, title: &str) -> Option<String> {
+    let m = mime(path)?;
+    let bytes = std::fs::read(path).ok()?;
+    let title = if title.is_empty() { String::new() } else { format!(" title=\"{}\"", escape(title)) };
+    Some(format!("<img class=\"figure\" alt=\"{}\"{title} src=\"data:{m};base64,{}\">", escape(alt), base64(&bytes)))
+}
+
+/// An SVG file's `<svg>` element as text for inlining in HTML (the XML prolog, doctype and
+/// comments before it dropped), or None when the file has no `<svg` element.
+pub fn svg_element(text: &str) -> Option<String> {
+    let i = text.find("<svg")?;
+    Some(text[i..].trim_end().to_string())
+}
+
+/// GitHub-style heading slug: lower case, alphanumerics, '-' and '_' kept, spaces to '-'.
+pub fn slug(text: &str) -> String {
+    text.trim()
+        .chars()
+        .filter_map(|c| {
+            if c.is_alphanumeric() || c == '-' || c == '_' {
+                Some(c.to_lowercase().next().unwrap_or(c))
+            } else if c == ' ' {
+                Some('-')
+            } else {
+                None
+            }
+        })
+        .collect()
+}
+
+fn level_num(l: HeadingLevel) -> usize {
+    l as usize
+}
+
+fn shifted(l: HeadingLevel, shift: isize) -> HeadingLevel {
+    let n = (level_num(l) as isize + shift).clamp(1, 6) as usize;
+    HeadingLevel::try_from(n).unwrap_or(HeadingLevel::H6)
+}
+
+/// Embeds a Markdown page: see the module documentation.
+pub fn embed(text: &str, how: &Embed) -> Embedded {
+    let mut out = Embedded::default();
+    // Heading shift: the page's smallest level becomes `top_level`.
+    let min_level = Parser::new_ext(text, options())
+        .filter_map(|e| match e {
+            Event::Start(Tag::Heading { level, .. }) => Some(level_num(level)),
+            _ => None,
+        })
+        .min()
+        .unwrap_or(how.top_level);
+    let shift = how.top_level as isize - min_level as isize;
+
+    // Local files the page links to: copied next to the report, once each.
+    let copy = |path: &Path, rel: &str, out: &mut Embedded| -> Option<String> {
+        if !path.is_file() {
+            if !out.missing.iter().any(|m| m == rel) {
+                out.missing.push(rel.to_string());
+            }
+            return None;
+        }
+        let target_rel = format!("{}/{rel}", how.copy_to);
+        if !out.copied.contains(&target_rel) {
+            let target = how.out.join(&target_rel);
+            let same = match (path.canonicalize(), target.canonicalize()) {
+                (Ok(a), Ok(b)) => a == b,
+                _ => false,
+            };
+            if !same {
+                if let Some(parent) = target.parent() {
+                    let _ = std::fs::create_dir_all(parent);
+                }
+                if std::fs::copy(path, &target).is_err() {
+                    return None;
+                }
+            }
+            out.copied.push(target_rel.clone());
+        }
+        Some(target_rel)
+    };
+
+    // --- Markdown: the source with edits (heading levels, link destinations).
+    let mut edits: Vec<(Range<usize>, String)> = Vec::new();
+    let parser = Parser::new_ext(text, options());
+    for (_, def) in parser.reference_definitions().iter() {
+        if let Some((path, rel, frag)) = local(how.base, &def.dest) {
+            if let Some(new) = copy(&path, &rel, &mut out) {
+                let span = &text[def.span.clone()];
+                if let Some(colon) = span.find("]:") {
+                    if let Some(i) = span[colon..].find(def.dest.as_ref()) {
+                        let s = def.span.start + colon + i;
+                        edits.push((s..s + def.dest.len(), format!("{new}{frag}")));
+                    }
+                }
+            }
+        }
+    }
+    for (event, range) in parser.into_offset_iter() {
+        match event {
+            Event::Start(Tag::Heading { level, .. }) if shift != 0 => {
+                let at_line_start = range.start == 0 || text.as_bytes()[range.start - 1] == b'\n';
+                let src = &text[range.clone()];
+                let new = level_num(shifted(level, shift));
+                if !at_line_start {
+                    continue;
+                }
+                if src.starts_with('#') {
+                    let hashes = src.bytes().take_while(|b| *b == b'#').count();
+                    edits.push((range.start..range.start + hashes, "#".repeat(new)));
+                } else {
+                    // Setext (underlined): becomes an ATX heading; the underline goes.
+                    let body = src.trim_end_matches(['\n', '\r']);
+                    if let Some(nl) = body.rfind('\n') {
+                        edits.push((range.start..range.start, format!("{} ", "#".repeat(new))));
+                        edits.push((range.start + nl..range.start + body.len(), String::new()));
+                    }
+                }
+            }
+            Event::Start(Tag::Image { dest_url, .. }) | Event::Start(Tag::Link { dest_url, .. }) => {
+                let Some((path, rel, frag)) = local(how.base, &dest_url) else { continue };
+                let Some(new) = copy(&path, &rel, &mut out) else { continue };
+                let src = &text[range.clone()];
+                for open in ["](<", "]("] {
+                    if let Some(i) = src.rfind(&format!("{open}{}", dest_url.as_ref())) {
+                        let s = range.start + i + open.len();
+                        edits.push((s..s + dest_url.len(), format!("{new}{frag}")));
+                        break;
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    edits.sort_by_key(|e| (e.0.start, e.0.end));
+    let mut md = String::with_capacity(text.len() + 64);
+    let mut at = 0;
+    for (r, new) in &edits {
+        if r.start < at {
+            continue; // overlapping edit (cannot happen for well-formed input): keep the first
+        }
+        md.push_str(&text[at..r.start]);
+        md.push_str(new);
+        at = r.end;
+    }
+    md.push_str(&text[at..]);
+    out.md = md;
+
+    // --- HTML: the events, headings shifted with ids, local images inlined.
+    let events: Vec<Event> = Parser::new_ext(text, options()).collect();
+    let mut html_events: Vec<Event> = Vec::with_capacity(events.len());
+    let mut used_ids: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < events.len() {
+        match &events[i] {
+            Event::Start(Tag::Heading { level, id, classes, attrs }) => {
+                let mut j = i + 1;
+                let mut words = String::new();
+                while j < events.len() && !matches!(events[j], Event::End(TagEnd::Heading(_))) {
+                    if let Event::Text(t) | Event::Code(t) = &events[j] {
+                        words.push_str(t);
+                    }
+                    j += 1;
+                }
+                let mut anchor = format!("{}{}", how.anchor_prefix, id.as_deref().map(str::to_string).unwrap_or_else(|| slug(&words)));
+                let base_anchor = anchor.clone();
+                let mut k = 1;
+                while used_ids.contains(&anchor) {
+                    anchor = format!("{base_anchor}-{k}");
+                    k += 1;
+                }
+                used_ids.push(anchor.clone());
+                html_events.push(Event::Start(Tag::Heading {
+                    level: shifted(*level, shift),
+                    id: Some(CowStr::from(anchor)),
+                    classes: classes.clone(),
+                    attrs: attrs.clone(),
+                }));
+            }
+            Event::End(TagEnd::Heading(level)) => html_events.push(Event::End(TagEnd::Heading(shifted(*level, shift)))),
+            Event::Start(Tag::Image { dest_url, title, .. }) => {
+                // Collect the alt text up to the matching end.
+                let mut j = i + 1;
+                let mut depth = 0;
+                let mut alt = String::new();
+                while j < events.len() {
+                    match &events[j] {
+                        Event::Start(Tag::Image { .. }) => depth += 1,
+                        Event::End(TagEnd::Image) if depth == 0 => break,
+                        Event::End(TagEnd::Image) => depth -= 1,
+                        Event::Text(t) | Event::Code(t) => alt.push_str(t),
+                        _ => {}
+                    }
+                    j += 1;
+                }
+                match local(how.base, dest_url) {
+                    Some((path, rel, _)) => {
+                        let img = img_data_uri(&path, &alt, title).unwrap_or_else(|| {
+                            if !out.missing.contains(&rel) {
+                                out.missing.push(rel.clone());
+                            }
+                            format!("<span class=\"missing\">[figure {} not found next to the page]</span>", escape(&rel))
+                        });
+                        html_events.push(Event::InlineHtml(CowStr::from(img)));
+                        i = j + 1;
+                        continue;
+                    }
+                    None => html_events.push(events[i].clone()),
+                }
+            }
+            Event::Start(Tag::Link { link_type, dest_url, title, id }) => {
+                if let Some(anchor) = dest_url.strip_prefix('#') {
+                    html_events.push(Event::Start(Tag::Link {
+                        link_type: *link_type,
+                        dest_url: CowStr::from(format!("#{}{anchor}", how.anchor_prefix)),
+                        title: title.clone(),
+                        id: id.clone(),
+                    }));
+                } else if let Some((path, rel, frag)) = local(how.base, dest_url) {
+                    let target = format!("{}/{rel}{frag}", how.copy_to);
+                    html_events.push(Event::Start(Tag::Link {
+                        link_type: *link_type,
+                        dest_url: CowStr::from(target),
+                        title: title.clone(),
+                        id: id.clone(),
+                    }));
+                    // A linked SVG is also shown, inline, right after its link.
+                    if is_svg(&path) {
+                        let mut j = i + 1;
+                        while j < events.len() && !matches!(events[j], Event::End(TagEnd::Link)) {
+                            html_events.push(events[j].clone());
+                            j += 1;
+                        }
+                        html_events.push(Event::End(TagEnd::Link));
+                        if let Some(img) = img_data_uri(&path, &rel, title) {
+                            html_events.push(Event::InlineHtml(CowStr::from(format!("<br>{img}"))));
+                        }
+                        i = j + 1;
+                        continue;
+                    }
+                } else {
+                    html_events.push(events[i].clone());
+                }
+            }
+            e => html_events.push(e.clone()),
+        }
+        i += 1;
+    }
+    pulldown_cmark::html::push_html(&mut out.html, html_events.into_iter());
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_matches_rfc4648_examples() {
+        for (a, b) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+            assert_eq!(base64(a.as_bytes()), b);
+        }
+    }
+
+    #[test]
+    fn local_links_only() {
+        let b = Path::new("/x");
+        assert!(local(b, "https://a.b/c.svg").is_none());
+        assert!(local(b, "#sec").is_none());
+        assert!(local(b, "/etc/passwd").is_none());
+        assert!(local(b, "../secret.svg").is_none());
+        assert_eq!(local(b, "./plots/a.svg#v").map(|l| (l.1, l.2)), Some(("plots/a.svg".into(), "#v".into())));
+    }
+
+    #[test]
+    fn headings_shift_links_rewrite_images_inline() {
+        let dir = std::env::temp_dir().join(format!("impact-md-unit-{}", std::process::id()));
+        let out = dir.join("out");
+        std::fs::create_dir_all(&out).unwrap();
+        std::fs::write(dir.join("fig.svg"), "<?xml version=\"1.0\"?><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>").unwrap();
+        let text = "# Title\n\nSee [fig](fig.svg) and [the part](#part-two).\n\nPart two\n--------\n\n![a figure](fig.svg)\n\n```\n# not a heading\n```\n\n![gone](gone.svg)\n\n[ref]: fig.svg\n";
+        let e = embed(text, &Embed { base: &dir, top_level: 3, anchor_prefix: "p-", out: &out, copy_to: "page" });
+        assert!(e.md.starts_with("### Title\n"), "{}", e.md);
+        assert!(e.md.contains("#### Part two\n\n"), "{}", e.md);
+        assert!(e.md.contains("[fig](page/fig.svg)") && e.md.contains("![a figure](page/fig.svg)") && e.md.contains("[ref]: page/fig.svg"), "{}", e.md);
+        assert!(e.md.contains("# not a heading"), "code blocks untouched");
+        assert!(e.md.contains("![gone](gone.svg)"));
+        assert!(out.join("page/fig.svg").is_file());
+        assert_eq!(e.missing, vec!["gone.svg".to_string()]);
+        assert!(e.html.contains("<h3 id=\"p-title\">Title</h3>") && e.html.contains("<h4 id=\"p-part-two\">"), "{}", e.html);
+        assert!(e.html.contains("href=\"#p-part-two\""));
+        assert!(e.html.contains("src=\"data:image/svg+xml;base64,"));
+        assert!(e.html.contains("figure gone.svg not found"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
