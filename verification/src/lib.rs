@@ -2,11 +2,13 @@
 //! checks; the lint; the parallel runner and its matrix, results.json and JUnit output; the
 //! V&V report. The `impact` binary (`src/main.rs`) is its command line.
 
+pub mod bench_report;
 pub mod builtins;
 pub mod case;
 pub mod check;
 pub mod jobs;
 pub mod lint;
+pub mod markdown;
 pub mod report;
 pub mod runner;
 pub mod snapshot;

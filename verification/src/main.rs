@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use impact_verification::report::ReportOptions;
 use impact_verification::runner::{self, Options, Repo};
 
 #[derive(Parser)]
@@ -47,6 +48,14 @@ enum Command {
         /// Also write the V&V report (index.html, report.md) to --out.
         #[arg(long)]
         report: bool,
+        /// With --report: the benchmarks folder (`impact-bench all --out DIR`) for the
+        /// performance section (default: <out>/benchmarks if it exists).
+        #[arg(long, requires = "report")]
+        benchmarks: Option<PathBuf>,
+        /// With --report: the reconstruction page (default:
+        /// reference-data/paper/reconstruction/report.md).
+        #[arg(long, requires = "report")]
+        reconstruction: Option<PathBuf>,
         /// Repository root (default: found from the current folder).
         #[arg(long)]
         root: Option<PathBuf>,
@@ -65,6 +74,13 @@ enum Command {
         /// Where to write the report (default: the same folder).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// The benchmarks folder (`impact-bench all --out DIR`) for the performance section
+        /// (default: <from>/benchmarks or <out>/benchmarks, whichever exists).
+        #[arg(long)]
+        benchmarks: Option<PathBuf>,
+        /// The reconstruction page (default: reference-data/paper/reconstruction/report.md).
+        #[arg(long)]
+        reconstruction: Option<PathBuf>,
     },
 }
 
@@ -93,12 +109,18 @@ fn main() -> ExitCode {
             out,
             light,
             report,
+            benchmarks,
+            reconstruction,
             root,
-        } => verify(selectors, filter, jobs, out, light, report, root),
+        } => {
+            let report = report.then_some(ReportOptions { benchmarks, reconstruction });
+            verify(selectors, filter, jobs, out, light, report, root)
+        }
         Command::Lint { root } => lint(root),
-        Command::Report { from, out } => {
+        Command::Report { from, out, benchmarks, reconstruction } => {
             let out = out.unwrap_or_else(|| from.clone());
-            match impact_verification::report::write_report(&from, &out) {
+            let opts = ReportOptions { benchmarks, reconstruction };
+            match impact_verification::report::write_report_with(&from, &out, &opts) {
                 Ok(files) => {
                     for f in files {
                         println!("wrote {}", f.display());
@@ -155,7 +177,7 @@ fn verify(
     jobs: Option<usize>,
     out: PathBuf,
     light: bool,
-    report: bool,
+    report: Option<ReportOptions>,
     root: Option<PathBuf>,
 ) -> ExitCode {
     let repo = match repo(root) {
@@ -190,8 +212,8 @@ fn verify(
         return ExitCode::from(2);
     }
     println!("wrote {}/results.json, junit.xml, matrix.txt ({wall:.1} s, {jobs} jobs)", out.display());
-    if report {
-        match impact_verification::report::write_report(&out, &out) {
+    if let Some(opts) = report {
+        match impact_verification::report::write_report_with(&out, &out, &opts) {
             Ok(files) => {
                 for f in files {
                     println!("wrote {}", f.display());

@@ -237,8 +237,50 @@ fn slug(s: &str) -> String {
     s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect()
 }
 
-/// Writes index.html, report.md and plots/*.svg from a verify output folder.
+/// Where the reconstruction of the paper's lost data (issue 5, `scripts/reconstruct.py`)
+/// writes its page, relative to the repository root.
+pub const RECONSTRUCTION_PAGE: &str = "reference-data/paper/reconstruction/report.md";
+
+/// What the report embeds besides the verify results.
+#[derive(Debug, Clone, Default)]
+pub struct ReportOptions {
+    /// The folder written by `impact-bench all --out DIR`. None: `<from>/benchmarks` or
+    /// `<out>/benchmarks`, whichever exists (the section says how to produce it when neither).
+    pub benchmarks: Option<PathBuf>,
+    /// The reconstruction page. None: [`RECONSTRUCTION_PAGE`] under the repository root.
+    pub reconstruction: Option<PathBuf>,
+}
+
+/// Writes index.html, report.md and plots/*.svg from a verify output folder (the benchmarks
+/// and the reconstruction page at their default places).
 pub fn write_report(from: &Path, out: &Path) -> anyhow::Result<Vec<PathBuf>> {
+    write_report_with(from, out, &ReportOptions::default())
+}
+
+/// The reconstruction page's section: the page in HTML and Markdown, or that it is missing.
+fn reconstruction_context(path: &Path, root: &Path, out: &Path) -> serde_json::Value {
+    let shown = path.strip_prefix(root).unwrap_or(path).display().to_string();
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return serde_json::json!({"present": false, "path": shown});
+    };
+    let base = path.parent().unwrap_or(Path::new("."));
+    let e = crate::markdown::embed(&text, &crate::markdown::Embed {
+        base,
+        top_level: 3,
+        anchor_prefix: "recon-",
+        out,
+        copy_to: "reconstruction",
+    });
+    let written = crate::bench_report::modified(path).unwrap_or_else(|| "unknown".into());
+    serde_json::json!({
+        "present": true, "path": shown, "written": written,
+        "html": e.html, "md": e.md, "missing": e.missing,
+    })
+}
+
+/// Writes index.html, report.md and plots/*.svg from a verify output folder, with the
+/// benchmarks and reconstruction page of `opts`.
+pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyhow::Result<Vec<PathBuf>> {
     use anyhow::Context;
     let results_path = from.join("results.json");
     let results: serde_json::Value = serde_json::from_str(
@@ -329,7 +371,16 @@ pub fn write_report(from: &Path, out: &Path) -> anyhow::Result<Vec<PathBuf>> {
         "jobs": env["jobs"].as_u64().unwrap_or(0),
         "wall": format!("{:.1}", env["wall_time_s"].as_f64().unwrap_or(0.0)),
     });
+    let recon_path = opts.reconstruction.clone().unwrap_or_else(|| repo.root.join(RECONSTRUCTION_PAGE));
+    let recon = reconstruction_context(&recon_path, &repo.root, out);
+    let bench_dir = opts
+        .benchmarks
+        .clone()
+        .or_else(|| [from.join("benchmarks"), out.join("benchmarks")].into_iter().find(|d| d.is_dir()));
+    let bench = crate::bench_report::context(bench_dir.as_deref(), out);
     let ctx = serde_json::json!({
+        "recon": recon,
+        "bench": bench,
         "source": from.display().to_string(),
         "counts": results["counts"],
         "cases": cases,
