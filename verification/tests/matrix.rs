@@ -6,10 +6,13 @@
 //!   snapshot fails; review a change with `cargo insta review`.
 //! - results do not depend on the number of threads.
 
+mod support;
+
 use std::collections::BTreeMap;
 
 use impact_verification::case::load_cases;
 use impact_verification::check::Status;
+use impact_verification::report::{write_report_with, ReportOptions};
 use impact_verification::runner::{self, Options, Repo};
 use impact_verification::snapshot::case_text;
 
@@ -63,6 +66,21 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     let offline = html.replace("http://www.w3.org/2000/svg", ""); // the SVG namespace, not a fetch
     assert!(!offline.contains("<script") && !offline.contains("http://") && !offline.contains("https://"), "the report must open offline");
     assert!(std::fs::read_to_string(out.join("report.md")).unwrap().contains("| REQ-LIT-TABLE1 |"));
+    // No benchmarks folder next to the results: the performance section says how to make one.
+    assert!(html.contains("<b>No benchmark results:</b>"));
+    // With the fixtures of tests/support (not the real folders): the reconstruction page
+    // (issue 5) and the benchmarks (issue 6) beside the real matrix; and both missing.
+    let fixtures = out.join("fixtures");
+    support::write_benchmarks(&fixtures.join("bench"));
+    let page = support::write_reconstruction(&fixtures.join("recon"));
+    let opts = ReportOptions { benchmarks: Some(fixtures.join("bench")), reconstruction: Some(page) };
+    write_report_with(&out, &out, &opts).unwrap();
+    support::assert_sections_present(&out);
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("Requirements traceability matrix") && html.matches("<svg").count() >= 10, "the matrix is still all there");
+    let opts = ReportOptions { benchmarks: Some(fixtures.join("none")), reconstruction: Some(fixtures.join("none.md")) };
+    write_report_with(&out, &out, &opts).unwrap();
+    support::assert_sections_missing(&out, Some(&fixtures.join("none")));
     let _ = std::fs::remove_dir_all(&out);
 
     // Snapshots, one per case.
