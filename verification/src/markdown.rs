@@ -262,12 +262,35 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
     md.push_str(&text[at..]);
     out.md = md;
 
-    // --- HTML: the events, headings shifted with ids, local images inlined.
+    // --- HTML: the events, headings shifted with ids, local images inlined (each with an id).
+    // A link to a local SVG points at the page's inline figure of it; a linked SVG the page
+    // does not show is inlined after the top-level block holding the link.
     let events: Vec<Event> = Parser::new_ext(text, options()).collect();
+    let figure_id = |rel: &str| format!("{}fig-{}", how.anchor_prefix, slug(&rel.replace(['/', '.'], "-")));
+    let mut shown: Vec<String> = events
+        .iter()
+        .filter_map(|e| match e {
+            Event::Start(Tag::Image { dest_url, .. }) => local(how.base, dest_url).filter(|l| l.0.is_file() && mime(&l.0).is_some()).map(|l| l.1),
+            _ => None,
+        })
+        .collect();
+    let mut depth_after = Vec::with_capacity(events.len());
+    let mut depth = 0usize;
+    for e in &events {
+        match e {
+            Event::Start(_) => depth += 1,
+            Event::End(_) => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        depth_after.push(depth);
+    }
     let mut html_events: Vec<Event> = Vec::with_capacity(events.len());
     let mut used_ids: Vec<String> = Vec::new();
+    let mut with_id: Vec<String> = Vec::new();
+    let mut pending: Vec<String> = Vec::new();
     let mut i = 0;
     while i < events.len() {
+        let mut last = i; // the last event this step consumed
         match &events[i] {
             Event::Start(Tag::Heading { level, id, classes, attrs }) => {
                 let mut j = i + 1;
@@ -295,15 +318,15 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             }
             Event::End(TagEnd::Heading(level)) => html_events.push(Event::End(TagEnd::Heading(shifted(*level, shift)))),
             Event::Start(Tag::Image { dest_url, title, .. }) => {
-                // Collect the alt text up to the matching end.
+                // The alt text, up to the matching end.
                 let mut j = i + 1;
-                let mut depth = 0;
+                let mut nested = 0;
                 let mut alt = String::new();
                 while j < events.len() {
                     match &events[j] {
-                        Event::Start(Tag::Image { .. }) => depth += 1,
-                        Event::End(TagEnd::Image) if depth == 0 => break,
-                        Event::End(TagEnd::Image) => depth -= 1,
+                        Event::Start(Tag::Image { .. }) => nested += 1,
+                        Event::End(TagEnd::Image) if nested == 0 => break,
+                        Event::End(TagEnd::Image) => nested -= 1,
                         Event::Text(t) | Event::Code(t) => alt.push_str(t),
                         _ => {}
                     }
@@ -311,48 +334,45 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                 }
                 match local(how.base, dest_url) {
                     Some((path, rel, _)) => {
-                        let img = img_data_uri(&path, &alt, title).unwrap_or_else(|| {
-                            if !out.missing.contains(&rel) {
-                                out.missing.push(rel.clone());
+                        let img = match img_data_uri(&path, &alt, title) {
+                            Some(img) if !with_id.contains(&rel) => {
+                                with_id.push(rel.clone());
+                                img.replacen("<img ", &format!("<img id=\"{}\" ", figure_id(&rel)), 1)
                             }
-                            format!("<span class=\"missing\">[figure {} not found next to the page]</span>", escape(&rel))
-                        });
+                            Some(img) => img,
+                            None => {
+                                if !out.missing.contains(&rel) {
+                                    out.missing.push(rel.clone());
+                                }
+                                format!("<span class=\"missing\">[figure {} not found next to the page]</span>", escape(&rel))
+                            }
+                        };
                         html_events.push(Event::InlineHtml(CowStr::from(img)));
-                        i = j + 1;
-                        continue;
+                        last = j.min(events.len() - 1);
                     }
                     None => html_events.push(events[i].clone()),
                 }
             }
             Event::Start(Tag::Link { link_type, dest_url, title, id }) => {
+                let link = |dest: String| {
+                    Event::Start(Tag::Link { link_type: *link_type, dest_url: CowStr::from(dest), title: title.clone(), id: id.clone() })
+                };
                 if let Some(anchor) = dest_url.strip_prefix('#') {
-                    html_events.push(Event::Start(Tag::Link {
-                        link_type: *link_type,
-                        dest_url: CowStr::from(format!("#{}{anchor}", how.anchor_prefix)),
-                        title: title.clone(),
-                        id: id.clone(),
-                    }));
+                    html_events.push(link(format!("#{}{anchor}", how.anchor_prefix)));
                 } else if let Some((path, rel, frag)) = local(how.base, dest_url) {
-                    let target = format!("{}/{rel}{frag}", how.copy_to);
-                    html_events.push(Event::Start(Tag::Link {
-                        link_type: *link_type,
-                        dest_url: CowStr::from(target),
-                        title: title.clone(),
-                        id: id.clone(),
-                    }));
-                    // A linked SVG is also shown, inline, right after its link.
-                    if is_svg(&path) {
-                        let mut j = i + 1;
-                        while j < events.len() && !matches!(events[j], Event::End(TagEnd::Link)) {
-                            html_events.push(events[j].clone());
-                            j += 1;
+                    if is_svg(&path) && shown.contains(&rel) {
+                        html_events.push(link(format!("#{}", figure_id(&rel))));
+                    } else {
+                        html_events.push(link(format!("{}/{rel}{frag}", how.copy_to)));
+                        if is_svg(&path) {
+                            if let Some(img) = img_data_uri(&path, &rel, title) {
+                                html_events.pop();
+                                html_events.push(link(format!("#{}", figure_id(&rel))));
+                                pending.push(img.replacen("<img ", &format!("<img id=\"{}\" ", figure_id(&rel)), 1));
+                                shown.push(rel.clone());
+                                with_id.push(rel);
+                            }
                         }
-                        html_events.push(Event::End(TagEnd::Link));
-                        if let Some(img) = img_data_uri(&path, &rel, title) {
-                            html_events.push(Event::InlineHtml(CowStr::from(format!("<br>{img}"))));
-                        }
-                        i = j + 1;
-                        continue;
                     }
                 } else {
                     html_events.push(events[i].clone());
@@ -360,7 +380,14 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             }
             e => html_events.push(e.clone()),
         }
-        i += 1;
+        if !pending.is_empty() && matches!(events[last], Event::End(_)) && depth_after[last] == 0 {
+            html_events.push(Event::Html(CowStr::from(format!("<p>{}</p>\n", pending.join(" ")))));
+            pending.clear();
+        }
+        i = last + 1;
+    }
+    if !pending.is_empty() {
+        html_events.push(Event::Html(CowStr::from(format!("<p>{}</p>\n", pending.join(" ")))));
     }
     pulldown_cmark::html::push_html(&mut out.html, html_events.into_iter());
     out
@@ -393,7 +420,8 @@ mod tests {
         let out = dir.join("out");
         std::fs::create_dir_all(&out).unwrap();
         std::fs::write(dir.join("fig.svg"), "<?xml version=\"1.0\"?><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>").unwrap();
-        let text = "# Title\n\nSee [fig](fig.svg) and [the part](#part-two).\n\nPart two\n--------\n\n![a figure](fig.svg)\n\n```\n# not a heading\n```\n\n![gone](gone.svg)\n\n[ref]: fig.svg\n";
+        std::fs::write(dir.join("other.svg"), "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>").unwrap();
+        let text = "# Title\n\nSee [fig](fig.svg) and [the part](#part-two).\n\nPart two\n--------\n\n![a figure](fig.svg)\n\n```\n# not a heading\n```\n\n![gone](gone.svg)\n\n- a list, [only linked](other.svg)\n- more\n\nAfter.\n\n[ref]: fig.svg\n";
         let e = embed(text, &Embed { base: &dir, top_level: 3, anchor_prefix: "p-", out: &out, copy_to: "page" });
         assert!(e.md.starts_with("### Title\n"), "{}", e.md);
         assert!(e.md.contains("#### Part two\n\n"), "{}", e.md);
@@ -404,7 +432,12 @@ mod tests {
         assert_eq!(e.missing, vec!["gone.svg".to_string()]);
         assert!(e.html.contains("<h3 id=\"p-title\">Title</h3>") && e.html.contains("<h4 id=\"p-part-two\">"), "{}", e.html);
         assert!(e.html.contains("href=\"#p-part-two\""));
-        assert!(e.html.contains("src=\"data:image/svg+xml;base64,"));
+        assert_eq!(e.html.matches("src=\"data:image/svg+xml;base64,").count(), 2, "each SVG inlined once: {}", e.html);
+        assert!(e.html.contains("<a href=\"#p-fig-fig-svg\">fig</a>") && e.html.contains("<img id=\"p-fig-fig-svg\""), "a link to a shown figure jumps to it");
+        // A linked SVG the page does not show: inlined after the list that holds the link.
+        let (list_end, fig, after) = (e.html.find("</ul>").unwrap(), e.html.find("id=\"p-fig-other-svg\"").unwrap(), e.html.find("After.").unwrap());
+        assert!(list_end < fig && fig < after, "{}", e.html);
+        assert!(e.md.contains("[only linked](page/other.svg)"));
         assert!(e.html.contains("figure gone.svg not found"));
         let _ = std::fs::remove_dir_all(&dir);
     }

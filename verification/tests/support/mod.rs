@@ -91,7 +91,8 @@ pub fn assert_sections_present(out: &Path) {
     assert!(html.contains("<h3 id=\"recon-reconstruction-fixture-page\">Reconstruction fixture page</h3>"), "page headings one level under the section");
     assert!(html.contains("<h4 id=\"recon-residuals-fixture\">") && html.contains("href=\"#recon-residuals-fixture\""));
     assert!(html.contains("<td>impulse (N s)</td>") && html.contains("<th>residual</th>"), "the page's table as HTML");
-    assert!(html.matches("src=\"data:image/svg+xml;base64,").count() >= 2, "the figure and the linked SVG inlined");
+    assert_eq!(html.matches("src=\"data:image/svg+xml;base64,").count(), 1, "the figure inlined, once");
+    assert!(html.contains("<img id=\"recon-fig-fig-fit-svg\"") && html.contains("<a href=\"#recon-fig-fig-fit-svg\">fit</a>"), "the link to the SVG jumps to its figure");
     assert!(html.contains("figure lost.svg not found") && html.contains("<code>lost.svg</code>"), "a missing figure is said, not invented");
     // ... and in report.md: embedded, links pointing at the copies next to report.md.
     assert!(md.contains("## Reproducing Dokko & Kim (2004)"));
