@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The main job: the benchmarks, then the verification matrix and the V&V report with them.
+#
+#   scripts/main-job.sh            # full sizes (work-precision at four mesh levels x three CFLs)
+#   scripts/main-job.sh --quick    # the benchmarks at their small CI sizes; verify is the same
+#
+# Writes out/verification/ (results.json, junit.xml, index.html, report.md, ...) and
+# out/verification/benchmarks/ (the impact-bench CSV, SVG and Markdown). Runs from any folder.
+# Exit status: verify's (0 all OK or SKIP, 1 a check failed, 2 bad input), written after the
+# report; when verify passes but the benchmarks failed (a stability run that blew up silently,
+# a build error), the benchmarks' status, so a failure is never hidden. The report is written
+# in both cases, with whatever the benchmarks managed to write.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+quick=()
+if [[ "${1:-}" == "--quick" ]]; then
+    quick=(--quick)
+    shift
+fi
+if [[ $# -gt 0 ]]; then
+    echo "usage: scripts/main-job.sh [--quick]" >&2
+    exit 2
+fi
+
+out=out/verification
+bench="$out/benchmarks"
+rm -rf "$bench"   # no stale results from an earlier run in the report
+mkdir -p "$bench"
+
+echo "== benchmarks: impact-bench all ${quick[*]:-} --out $bench"
+bench_status=0
+cargo run --release -p impact-benchmarks -- all "${quick[@]}" --out "$bench" || bench_status=$?
+if [[ $bench_status -ne 0 ]]; then
+    echo "main-job: the benchmarks failed (status $bench_status); the report shows what they wrote" >&2
+fi
+
+echo "== verify: the matrix and the V&V report"
+verify_status=0
+cargo run --release -p impact-verification --bin impact -- \
+    verify --report --out "$out" --benchmarks "$bench" || verify_status=$?
+
+echo "== report: $out/index.html, $out/report.md"
+if [[ $verify_status -ne 0 ]]; then
+    exit "$verify_status"
+fi
+exit "$bench_status"
