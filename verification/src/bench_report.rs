@@ -303,7 +303,7 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
     });
 
     let stability = stab_md_path.as_ref().and_then(|p| std::fs::read_to_string(p).ok()).map(|text| {
-        let e = embed(&text, &Embed { base: dir, top_level: 4, anchor_prefix: "bench-", out, copy_to: "benchmarks" });
+        let e = embed(&text, &Embed { base: dir, top_level: 4, anchor_prefix: "bench-", out, copy_to: "benchmarks", section_title: None });
         json!({"html": e.html, "md": e.md})
     });
     json!({

@@ -21,6 +21,10 @@ pub struct Embed<'a> {
     pub out: &'a Path,
     /// Subfolder of `out` the linked local files are copied to.
     pub copy_to: &'a str,
+    /// The title of the report's section holding the page: a page whose first block is a
+    /// title heading with the same words (its only heading at that level) loses it, and its
+    /// next level becomes `top_level`.
+    pub section_title: Option<&'a str>,
 }
 
 /// A page ready for both outputs.
@@ -159,11 +163,36 @@ fn shifted(l: HeadingLevel, shift: isize) -> HeadingLevel {
 pub fn embed(text: &str, how: &Embed) -> Embedded {
     let mut out = Embedded::default();
     // Heading shift: the page's smallest level becomes `top_level`.
-    let min_level = Parser::new_ext(text, options())
-        .filter_map(|e| match e {
-            Event::Start(Tag::Heading { level, .. }) => Some(level_num(level)),
-            _ => None,
-        })
+    // A title that repeats the section's: its events (HTML) and source range (Markdown).
+    let headings: Vec<(usize, usize, String, Range<usize>)> = {
+        let mut v = Vec::new();
+        let mut current: Option<(usize, usize, String, Range<usize>)> = None;
+        for (k, (e, r)) in Parser::new_ext(text, options()).into_offset_iter().enumerate() {
+            match e {
+                Event::Start(Tag::Heading { level, .. }) => current = Some((k, level_num(level), String::new(), r)),
+                Event::Text(t) | Event::Code(t) => {
+                    if let Some(c) = current.as_mut() {
+                        c.2.push_str(&t);
+                    }
+                }
+                Event::End(TagEnd::Heading(_)) => v.extend(current.take()),
+                _ => {}
+            }
+        }
+        v
+    };
+    let top = headings.iter().map(|h| h.1).min();
+    let title = headings.first().filter(|h| {
+        h.0 == 0
+            && Some(h.1) == top
+            && headings.iter().filter(|o| o.1 == h.1).count() == 1
+            && how.section_title.is_some_and(|t| slug(t) == slug(&h.2))
+    });
+    let title_range = title.map(|h| h.3.clone());
+    let min_level = headings
+        .iter()
+        .filter(|h| title.is_none_or(|t| t.0 != h.0))
+        .map(|h| h.1)
         .min()
         .unwrap_or(how.top_level);
     let shift = how.top_level as isize - min_level as isize;
@@ -212,7 +241,13 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             }
         }
     }
+    if let Some(r) = &title_range {
+        edits.push((r.clone(), String::new()));
+    }
     for (event, range) in parser.into_offset_iter() {
+        if title_range.as_ref().is_some_and(|t| range.start >= t.start && range.end <= t.end) {
+            continue;
+        }
         match event {
             Event::Start(Tag::Heading { level, .. }) if shift != 0 => {
                 let at_line_start = range.start == 0 || text.as_bytes()[range.start - 1] == b'\n';
@@ -289,6 +324,9 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
     let mut with_id: Vec<String> = Vec::new();
     let mut pending: Vec<String> = Vec::new();
     let mut i = 0;
+    if title.is_some() {
+        i = events.iter().position(|e| matches!(e, Event::End(TagEnd::Heading(_)))).map_or(0, |j| j + 1);
+    }
     while i < events.len() {
         let mut last = i; // the last event this step consumed
         match &events[i] {
@@ -405,6 +443,21 @@ mod tests {
     }
 
     #[test]
+    fn a_title_repeating_the_section_goes() {
+        let dir = std::env::temp_dir();
+        let how = |t| Embed { base: &dir, top_level: 3, anchor_prefix: "", out: &dir, copy_to: "x", section_title: t };
+        let text = "# Reproducing Dokko & Kim (2004)\n\nIntro.\n\n## Summary\n\nText.\n";
+        let e = embed(text, &how(Some("Reproducing Dokko & Kim (2004)")));
+        assert_eq!(e.md, "\nIntro.\n\n### Summary\n\nText.\n");
+        assert!(e.html.starts_with("<p>Intro.</p>") && e.html.contains("<h3 id=\"summary\">Summary</h3>"), "{}", e.html);
+        // Another title, or none asked for: kept.
+        for t in [Some("Something else"), None] {
+            let e = embed(text, &how(t));
+            assert!(e.md.starts_with("### Reproducing Dokko & Kim (2004)\n") && e.md.contains("#### Summary"), "{}", e.md);
+        }
+    }
+
+    #[test]
     fn local_links_only() {
         let b = Path::new("/x");
         assert!(local(b, "https://a.b/c.svg").is_none());
@@ -422,7 +475,7 @@ mod tests {
         std::fs::write(dir.join("fig.svg"), "<?xml version=\"1.0\"?><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>").unwrap();
         std::fs::write(dir.join("other.svg"), "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>").unwrap();
         let text = "# Title\n\nSee [fig](fig.svg) and [the part](#part-two).\n\nPart two\n--------\n\n![a figure](fig.svg)\n\n```\n# not a heading\n```\n\n![gone](gone.svg)\n\n- a list, [only linked](other.svg)\n- more\n\nAfter.\n\n[ref]: fig.svg\n";
-        let e = embed(text, &Embed { base: &dir, top_level: 3, anchor_prefix: "p-", out: &out, copy_to: "page" });
+        let e = embed(text, &Embed { base: &dir, top_level: 3, anchor_prefix: "p-", out: &out, copy_to: "page", section_title: None });
         assert!(e.md.starts_with("### Title\n"), "{}", e.md);
         assert!(e.md.contains("#### Part two\n\n"), "{}", e.md);
         assert!(e.md.contains("[fig](page/fig.svg)") && e.md.contains("![a figure](page/fig.svg)") && e.md.contains("[ref]: page/fig.svg"), "{}", e.md);

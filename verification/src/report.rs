@@ -270,6 +270,7 @@ fn reconstruction_context(path: &Path, root: &Path, out: &Path) -> serde_json::V
         anchor_prefix: "recon-",
         out,
         copy_to: "reconstruction",
+        section_title: Some("Reproducing Dokko & Kim (2004)"),
     });
     let written = crate::bench_report::modified(path).unwrap_or_else(|| "unknown".into());
     serde_json::json!({
