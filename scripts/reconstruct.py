@@ -122,7 +122,9 @@ def params(x: dict, law: str, pairing: str, L: float = REF_L) -> dict:
     rho W h L, and fully plastic load sigma_y W h^2 / L."""
     s = L / REF_L
     p = dict(rc.DEFAULTS)
-    p.update({"L": L, "h": x["h_eq"] * s ** 2, "W": w_eq(x) / s ** 3, "sy": x["sy"],
+    # 12 significant digits: clean scene values, no round-off tails
+    p.update({"L": L, "h": float(f"{x['h_eq'] * s ** 2:.12g}"),
+              "W": float(f"{w_eq(x) / s ** 3:.12g}"), "sy": x["sy"],
               "Et": x["Et"], "r": x["r"], "law": law, "pairing": pairing})
     if x.get("s_sat"):
         # linear hardening up to the flow stress s_sat, flat beyond (a hardening table)
@@ -132,9 +134,13 @@ def params(x: dict, law: str, pairing: str, L: float = REF_L) -> dict:
 
 
 def round_x(x: dict, digits: int = 3) -> dict:
-    """The search coordinates rounded to `digits` significant digits (clean scene values)."""
-    return {k: (float(f"{v:.{digits}g}") if isinstance(v, float) and v != 0 else v)
-            for k, v in x.items()}
+    """The set rounded to `digits` significant digits in the scene's own terms (h, W, yield,
+    E_t, r at L = REF_L), so the scenes carry clean values; S follows from the rounded W, h."""
+    def rnd(v):
+        return float(f"{v:.{digits}g}") if isinstance(v, float) and v != 0 else v
+    out = {k: rnd(v) for k, v in x.items() if k != "S"}
+    out["S"] = rnd(w_eq(x)) * out["h_eq"] ** 3
+    return out
 
 
 def scenes_for(p: dict, mesh, rows=ROWS, t2_v0=rc.T2_V0, probes=True, every=1.0e-4):
