@@ -11,9 +11,11 @@ use crate::element::{scatter_add, ElementEnergy, ElementVector};
 /// Elements per task.
 pub const CHUNK: usize = 64;
 
-/// Meshes with fewer elements run on one thread: below this the thread hand-off costs more
-/// than it saves on 2 cores (measured with `impact-bench throughput`).
-pub const PARALLEL_MIN_ELEMENTS: usize = 1024;
+/// Meshes with fewer elements run on one thread. Measured on this 2-core machine (with the
+/// other core partly busy): two threads pay off only for the plastic stress path, 1.15x at
+/// 5120 and 20480 elements; at 1280 elements the hand-off per step costs more than it saves,
+/// and the elastic kernels (a stiffness product, ~25 ns per element) never gained.
+pub const PARALLEL_MIN_ELEMENTS: usize = 4096;
 
 /// Buffers of the chunked assembly (allocated once, reused every step).
 #[derive(Debug, Clone)]
@@ -33,12 +35,12 @@ impl Assembly {
         }
     }
 
-    /// The default for a mesh: parallel when it is large enough and there is more than one
-    /// thread.
-    pub fn for_mesh(n_elements: usize) -> Assembly {
+    /// The default for a mesh: parallel when the kernel is costly (`costly_kernel`: the
+    /// plastic stress path), the mesh is large enough and there is more than one thread.
+    pub fn for_mesh(n_elements: usize, costly_kernel: bool) -> Assembly {
         Assembly::new(
             n_elements,
-            n_elements >= PARALLEL_MIN_ELEMENTS && rayon::current_num_threads() > 1,
+            costly_kernel && n_elements >= PARALLEL_MIN_ELEMENTS && rayon::current_num_threads() > 1,
         )
     }
 

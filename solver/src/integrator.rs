@@ -67,7 +67,8 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             mass,
             inverse_mass,
             linear: None,
-            assembly: Assembly::for_mesh(n),
+            // Elastic materials have a zero-sized state and a cheap kernel.
+            assembly: Assembly::for_mesh(n, std::mem::size_of::<M::State>() > 0),
         }
     }
 
