@@ -399,37 +399,44 @@ def mark(rel: float, tol: float) -> str:
 
 def supported_tolerances(result: dict) -> dict:
     """What the reconstruction supports, per quantity: the residual of the chosen set on the
-    default mesh, widened by the spread over the equally good sets (re-fit at another plate
-    length) and by the mesh change 80x16 -> 160x32, rounded up (1 % steps below 10 %, 5 %
-    steps above)."""
+    default mesh, widened by the spread over comparably good sets (the re-fits at another
+    plate length whose default-mesh J is within 1.5x of the chosen one) and by the change
+    80x16 -> 160x32, rounded up
+    (1 % steps below 10 %, 5 % steps above) and never below the issue's target (a tighter
+    band would claim more than a reconstruction with these non-uniquenesses can)."""
     c = result["confirm"]["res"]
     alts = [r["res"] for r in result.get("refit_confirm", []) if r["res"]["ok"]
-            and r["J"] <= 1.25 * result["confirm"]["J"]]
+            and r["J"] <= 1.5 * result["confirm"]["J"]]
     ms = {tuple(m["mesh"]): m for m in result.get("mesh_study", []) if m["ok"]}
     fine, finer = ms.get((80, 16)), ms.get((160, 32))
     out = {}
     for k, e in c["t1"].items():
+        q = k.split(":")[0]
+        target = 0.05 if q in rc.ROBUST else 0.10
         worst = abs(e["rel"])
+        spread = 0.0
         for a in alts:
             if k in a["t1"]:
-                worst = max(worst, abs(a["t1"][k]["rel"]))
+                spread = max(spread, abs(a["t1"][k]["rel"] - e["rel"]))
         dm = 0.0
         if fine and finer and k in fine["t1"] and k in finer["t1"]:
             dm = abs(finer["t1"][k] - fine["t1"][k]) / abs(e["paper"])
-        need = worst + dm
+        need = worst + spread + dm
         step = 0.01 if need < 0.095 else 0.05
-        tol = max(math.ceil(need / step - 1e-9) * step, 0.01)
-        q = k.split(":")[0]
-        out[k] = f"{tol * 100:.0f} % relative (residual {pct(e['rel'])}; target " \
-                 f"{'5' if q in rc.ROBUST else '10'} %)"
+        tol = max(math.ceil(need / step - 1e-9) * step, target)
+        out[k] = (f"{tol * 100:.0f} % relative (residual {pct(e['rel'])}; + spread over comparably "
+                  f"good sets {pct(spread).lstrip('+')}; + mesh 80x16->160x32 "
+                  f"{pct(dm).lstrip('+')}; target {target * 100:.0f} %)")
         out[f"{k}:value"] = tol
+        out[f"{k}:parts"] = {"residual": e["rel"], "spread": spread, "mesh": dm, "need": need}
     worst_t2 = max(abs(e["rel"]) for e in c["t2"].values())
     for a in alts:
         worst_t2 = max(worst_t2, max(abs(e["rel"]) for e in a["t2"].values()))
-    t2tol = max(math.ceil(worst_t2 / 0.005 - 1e-9) * 0.005, 0.01)
-    out["t2"] = f"supported tolerance {t2tol * 100:.1f} % relative (worst residual of the sweep " \
-                f"{pct(worst_t2)}; target 3 %)"
+    t2tol = max(math.ceil(worst_t2 / 0.005 - 1e-9) * 0.005, 0.03)
+    out["t2"] = (f"supported tolerance {t2tol * 100:.1f} % relative (worst residual of the sweep, "
+                 f"chosen and comparably good sets: {pct(worst_t2).lstrip('+')}; target 3 %)")
     out["t2:value"] = t2tol
+    out["t2:worst"] = worst_t2
     return out
 
 
@@ -466,6 +473,17 @@ def provenance_text(result: dict, out: Path) -> str:
          f"| solver binary | `{result.get('solver_binary', {}).get('path', '?')}`, built from "
          f"{result.get('solver_binary', {}).get('built_from', '?')} |",
          f"| solver binary sha256 | `{result['solver_binary_sha256']}` |"]
+    built = str(result.get("solver_binary", {}).get("built_from", "")).split(" ")[0]
+    if len(built) == 40:
+        import subprocess
+        try:
+            log = subprocess.run(["git", "log", "--format=%h %s", f"{built}..HEAD", "--",
+                                  "solver"], cwd=ROOT, capture_output=True, text=True,
+                                 check=True).stdout.strip().splitlines()
+        except (OSError, subprocess.CalledProcessError):
+            log = ["(git unavailable)"]
+        L.append("| solver/ commits between the binary's commit and HEAD (when this page was "
+                 "written) | " + ("none" if not log else "; ".join(x[:110] for x in log)) + " |")
     for f, h in result["script_sha256"].items():
         L.append(f"| scripts/{f} sha256 (at the search) | `{h}` |")
     L.append(f"| scripts/recon_report.py sha256 (wrote this page) | "
@@ -526,6 +544,21 @@ def residual_block(res: dict, with_t2: bool = True) -> list[str]:
     return L
 
 
+def short_err(e: str) -> str:
+    """'t2 plastic v0=12.5: error: run stopped at step 96 (t = ...): element 1279 (...) has
+    inverted: ...' -> 't2 plastic v0=12.5: element 1279 inverted at t = 1.2e-05 s'."""
+    import re
+    where = e.split(":")[0]
+    t = re.search(r"t = ([0-9.e+-]+) s", e)
+    tt = f" at t = {float(t.group(1)):.2g} s" if t else ""
+    if "inverted" in e:
+        el = re.search(r"element (\d+)", e)
+        return f"{where}: element {el.group(1) if el else '?'} (under the top node) inverted{tt}"
+    if "no root" in e:
+        return f"{where}: contact law maximum exceeded{tt}"
+    return e[:120]
+
+
 def params_row(p: dict) -> list[str]:
     return [f"{p['L'] * 1e3:.1f}", f"{p['W'] * 1e3:.1f}", f"{p['h'] * 1e3:.2f}",
             f"{p['sy'] / 1e6:.0f}", f"{p['Et'] / 1e9:.2f}", f"{p['r'] * 1e3:.2f}"]
@@ -571,8 +604,8 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A(f"- **Against the targets of issue 5** (default mesh 80 x 16 q4-sri, half model): "
       f"{acc_text(acc)}.")
     n_in = sum(1 for k, e in res["t1"].items() if abs(e["rel"]) <= 0.10)
-    A(f"- **{n_in} of the 12 Table 1 values** are within 10 %, all 6 robust ones within 5 %"
-      if acc.get("robust_pass") else f"- **{n_in} of the 12 Table 1 values** are within 10 %")
+    A(f"- **{n_in} of the 12 Table 1 values** are within 10 %, all 6 robust ones within 5 %."
+      if acc.get("robust_pass") else f"- **{n_in} of the 12 Table 1 values** are within 10 %.")
     if fails:
         A("- **Out of the 10 % band**: " + ", ".join(
             f"{rc.T1_LABEL[k.split(':')[0]]} {ROW_LABEL[k.split(':')[1]].lower()} "
@@ -749,7 +782,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
                                         f"{v['J']:.2f}" if v["J"] < 1e5 else "fails",
                                         acc_text(v["acceptance"]) if v["J"] < 1e5 else
                                         "does not run on the default mesh: "
-                                        + v["res"].get("errors", ["?"])[0][:90] + "..."])
+                                        + short_err(v["res"].get("errors", ["?"])[0])])
     A(md_table(["law/pairing", "L mm", "W mm", "h mm", "yield MPa", "E_t GPa", "r mm",
                 "J (40x8)", "J (80x16)", "targets (80x16)"], rows))
     A("")
@@ -784,6 +817,17 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A("")
     el_runs = c["runs"][0]
     iv = el_runs["contact_intervals_s"]
+    near = [e["elastic_intervals_ms"] for e in result["evaluations"]
+            if e.get("elastic_intervals_ms") and abs(e["elastic_intervals_ms"][-1][1] / 0.605 - 1) < 0.15]
+    one = [iv_ for iv_ in near if iv_[0][1] > 0.5 * iv_[-1][1]]
+    one_st = sorted({e["stage"] for e in result["evaluations"] if e.get("elastic_intervals_ms")
+                     and abs(e["elastic_intervals_ms"][-1][1] / 0.605 - 1) < 0.15
+                     and e["elastic_intervals_ms"][0][1] > 0.5 * e["elastic_intervals_ms"][-1][1]})
+    single_txt = (f"of the {len(near)} elastic Table 1 runs of the search whose whole contact "
+                  f"lies within 15 % of 0.605 ms, {len(near) - len(one)} separate and re-contact "
+                  f"(first interval shorter than half the whole) and {len(one)} have one long "
+                  f"first contact (stages: {', '.join(one_st) or '-'}); the chosen set is of the "
+                  "first kind, so for it the readings differ and the data decide")
     A(f"**Which contact duration the paper printed.** Our elastic impact has {len(iv)} contact "
       "intervals: " + ", ".join(f"{a * 1e3:.3f}-{bb * 1e3:.3f}" for a, bb in iv) + " ms. The "
       f"paper's 0.605 ms is the end of the last interval (ours {iv[-1][1] * 1e3:.3f} ms), not "
@@ -792,11 +836,12 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "a period, T = pi sqrt(m/k); the elastic row gives k = m (v0/delta)^2 = 18 (10/1.903e-3)^2 "
       "= 4.97e8 N/m from its displacement and k = m (pi/T)^2 = 4.85e8 N/m with T = 0.605 ms: "
       "the same stiffness, so 0.605 ms spans the whole impact, from first contact to the final "
-      "separation, as a half period of the striker on the plate. The first contact interval "
-      "is set by the local contact and the first plate wave, a small fraction of that in every "
-      "reading and set we ran (the search records it for every evaluation, "
-      "`elastic_intervals_ms`). The report and the scenes use the end of the last interval "
-      "(`contact_duration_s`) and list every interval.")
+      "separation, as a half period of the striker on the plate. A first interval of 0.605 ms "
+      "followed by re-contacts would make the whole contact longer than that half period, "
+      "inconsistent with the printed displacement. The two readings coincide only when the "
+      "impact has a single contact interval: "
+      f"{single_txt}. The report and the scenes use the end of the last interval "
+      "(`contact_duration_s`, i.e. the whole contact) and list every interval.")
     A("")
     for f in hist_plots:
         A(f"![{f}]({f})")
@@ -1057,7 +1102,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
         A("- **It is not mesh-convergent and breaks on the default mesh**: a point force on a "
           "surface node over yielding material punches that node in; on the 80 x 16 mesh the "
           "element under the top node inverts and the run stops: "
-          + (lv["res"].get("errors", ["(no failure)"])[0].split(": the displacements")[0]) + ".")
+          + short_err(lv["res"].get("errors", ["(no failure)"])[0]) + ".")
         A("- So the paper's numbers that favour the literal reading (the elasto-plastic peak "
           "force) are the ones that depend on its discretisation; no mesh-independent statement "
           "can be made with it, and it cannot be the reproducing reading of a verification suite.")
@@ -1100,7 +1145,8 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A(f"- **Elastic peak contact force** (ours {pe['ours']:.0f} kN, {pct(pe['rel'], 0)}): the "
       "largest spike of a fluctuating force (several contacts and separations); it depends on "
       "the reading of eq. (4) by a factor of about 2 and on the mesh by several per cent "
-      "(table above). Within reach only to about 10-15 %.")
+      "(table above). For a given plate it is within reach to about 10-15 %; comparably good "
+      "plates differ by more (section 13).")
     sat = result.get("saturation", [])
     A(f"- **Elasto-plastic stress at A** (ours {sa['ours']:.0f} MPa, paper 285.4 MPa, "
       f"{pct(sa['rel'], 0)}): with linear hardening the bottom fibre at mid-span hardens to "
@@ -1121,7 +1167,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
                          pct(r_.get("max_plate_displacement:plastic")),
                          pct(max((abs(v) for k, v in r_.items() if k.startswith("t2 ")), default=math.nan))])
         A(md_table(["flow-stress cap MPa", "J (EP rows, 80x16)", "stress A EP", "I EP", "v_f EP",
-                    "disp EP", "T2 EP worst |res|"], rows))
+                    "disp EP", "T2 EP worst (absolute)"], rows))
         A("")
     A("  The cap is one more parameter fitted to this one number (at a cap just above 285 MPa the "
       "stress at A equals the cap by construction), so it proves only that the mismatch is a "
@@ -1172,8 +1218,8 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A("")
     ve = pu["results"]["elastic"]
     if not ve.get("error") and ve["max_von_mises_Pa"]["A"] > p["sy"]:
-        A(f"The elastic pulse's stress at A ({ve['max_von_mises_Pa']['A'] / 1e6:.0f} MPa, about "
-          "twice the static value by the dynamic overshoot of a suddenly applied load) exceeds the "
+        A(f"The elastic pulse's stress at A ({ve['max_von_mises_Pa']['A'] / 1e6:.0f} MPa, raised "
+          "by the dynamic overshoot of a suddenly applied load) exceeds the "
           f"reconstructed yield ({p['sy'] / 1e6:.0f} MPa): 86.5 kN yields this plate, so the "
           "elasto-plastic pulse scene is the physically consistent one; the elastic one stays "
           "useful as a linear reference.")
@@ -1195,7 +1241,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
         ["1. Impulse decreases", "351.8 -> 221.2 N s; Table 2: lower at every v0 >= 2.5 m/s, equal at 1.25",
          f"{e_['impulse']:.1f} -> {p_['impulse']:.1f} N s; Table 2: lower at v0 = "
          f"{', '.join(f'{v:g}' for v in dec)} m/s, equal (elastic impact) at {', '.join(f'{v:g}' for v in eq) or '-'}",
-         "yes" if p_["impulse"] < e_["impulse"] and len(dec) >= 6 else "no"
+         ("yes" if p_["impulse"] < e_["impulse"] and len(dec) >= 6 else "no")
          + ("" if eq else " (at 1.25 m/s our plate already yields a little: "
             f"{pct(rc.rel(t2i[('plastic', 1.25)], t2i[('elastic', 1.25)]))}; the paper's does "
             "not, a hint of a higher yield, see section 7)")],
@@ -1224,27 +1270,33 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A("## 13. Tolerances the reconstruction supports")
     A("")
     A("For the harness (table1, momentum-impulse and pulse suites): the tolerance each "
-      "quantity can honestly be given against the paper, on the scenes of "
-      "`verification/scenes/paper-*.yaml`: the residual of the chosen set, widened by the "
-      "spread over equally good sets (the re-fit at another length when it fits as well) and "
-      "by the change 80x16 -> 160x32, rounded up.")
+      "quantity can honestly be given against the paper on the scenes of "
+      "`verification/scenes/paper-*.yaml`. It adds to the residual of the chosen set the "
+      "spread over comparably good sets (the re-fit at another length, J within 1.5x of the "
+      "chosen set's) and the change from 80x16 to 160x32, rounds up, and never goes below the "
+      "issue's target: a quantity that happens to land within 1 % of the paper is not "
+      "thereby pinned to 1 % by a reconstruction with these non-uniquenesses.")
     A("")
     rows = []
     for q in rc.T1_KEYS:
         for row in ROWS:
             k = f"{q}:{row}"
+            pr_ = tol[k + ":parts"]
             rows.append([rc.T1_LABEL[q], ROW_LABEL[row], group_of(q, row),
-                         pct(res["t1"][k]["rel"]), f"{tol[k + ':value'] * 100:.0f} %",
+                         pct(pr_["residual"]), pct(pr_["spread"]).lstrip("+"),
+                         pct(pr_["mesh"]).lstrip("+"), f"{tol[k + ':value'] * 100:.0f} %",
                          "5 %" if q in rc.ROBUST else "10 %"])
     rows.append(["Table 2 impulses (14)", "both", "robust",
                  pct(max((abs(e["rel"]) for e in res["t2"].values()), default=math.nan)),
+                 f"worst {pct(tol['t2:worst']).lstrip('+')}", "-",
                  f"{tol['t2:value'] * 100:.1f} %", "3 %"])
     rows.append(["impulse = m (v0 - v_final)", "every run", "identity",
-                 f"{c['max_impulse_momentum_error']:.0e}", "1e-12 (round-off)", "round-off"])
+                 f"{c['max_impulse_momentum_error']:.0e}", "-", "-", "1e-12 (round-off)",
+                 "round-off"])
     rows.append(["energy balance (default pairing)", "every run", "invariant",
-                 f"{c['max_energy_balance_error']:.0e}", "1e-3", "-"])
-    A(md_table(["quantity", "row", "kind", "residual (80x16)", "supported tolerance", "issue target"],
-               rows))
+                 f"{c['max_energy_balance_error']:.0e}", "-", "-", "1e-3", "-"])
+    A(md_table(["quantity", "row", "kind", "residual (80x16)", "spread (comparable sets)",
+                "mesh 80->160", "supported tolerance", "issue target"], rows))
     A("")
     A("Pulse scenes: no paper reference (Figs. 5-6 lost): compare with the independent code and "
       "the invariants only.")
