@@ -444,12 +444,13 @@ def write_report(result: dict, out: Path) -> None:
     out.mkdir(parents=True, exist_ok=True)
     result["supported_tolerances"] = supported_tolerances(result)
     write_data(result, out)
-    png = ROOT / "out" / ("reconstruct-quick" if result["quick"] else "reconstruct") / "png"
+    workdir = ROOT / result.get("work", "out/" + ("reconstruct-quick" if result["quick"] else "reconstruct"))
+    png = workdir / "png"
     png.mkdir(parents=True, exist_ok=True)
     plot_table2(result, out, png)
     plot_family(result, out, png)
     plot_elastic_grid(result, out, png)
-    work = ROOT / "out" / ("reconstruct-quick" if result["quick"] else "reconstruct") / "confirm"
+    work = workdir / "confirm"
     for old in out.glob("table1-*.svg"):
         old.unlink()
     hist_plots = plot_histories(work, out, png)

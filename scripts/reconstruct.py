@@ -729,6 +729,7 @@ def main() -> int:
         "solver_binary": {"path": str(Path(a.impact)), "built_from": a.built_from or
                           "the working tree at run time (see solver_dirty)"},
         "quick": a.quick,
+        "work": os.path.relpath(Path(a.work).resolve(), ROOT),
         "fixed": {k: rc.DEFAULTS[k] for k in ("E", "nu", "rho", "Es", "nus")},
         "space": [{"name": n, "low": lo, "high": hi, "log": lg} for n, lo, hi, lg in SPACE],
         "ref_L": REF_L, "scales": SCALES, "targets": TARGET,
