@@ -19,9 +19,19 @@ fn scene() -> Scene {
     Scene::from_yaml(PLASTIC, Path::new("example-plastic.yaml")).unwrap()
 }
 
-fn bench_model<F: Formulation, M: ConstitutiveModel>(c: &mut Criterion, name: &str, mut model: PlateModel<F, M>, mesh: &PlateMesh) {
+fn bench_model<F: Formulation, M: ConstitutiveModel>(
+    c: &mut Criterion,
+    name: &str,
+    mut model: PlateModel<F, M>,
+    mesh: &PlateMesh,
+) {
     // Uniform strain 1e-2 (8x the yield strain), reversed every call: every point yields.
-    let u: Vec<f64> = mesh.mesh.coords.iter().flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]]).collect();
+    let u: Vec<f64> = mesh
+        .mesh
+        .coords
+        .iter()
+        .flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]])
+        .collect();
     let minus: Vec<f64> = u.iter().map(|x| -x).collect();
     let mut f = vec![0.0; u.len()];
     let mut flip = false;
@@ -44,14 +54,32 @@ fn kernels(c: &mut Criterion) {
     let plastic = VonMises::new(&s.material).unwrap();
     macro_rules! all {
         ($name:literal, $f:expr) => {
-            bench_model(c, concat!($name, "/elastic"), PlateModel::new($f, elastic, &mesh, rho).with_linear_kernel(&mesh.mesh, &elastic), &mesh);
-            bench_model(c, concat!($name, "/elastic-stress-path"), PlateModel::new($f, elastic, &mesh, rho), &mesh);
-            bench_model(c, concat!($name, "/plastic-all-yielding"), PlateModel::new($f, plastic.clone(), &mesh, rho), &mesh);
+            bench_model(
+                c,
+                concat!($name, "/elastic"),
+                PlateModel::new($f, elastic, &mesh, rho).with_linear_kernel(&mesh.mesh, &elastic),
+                &mesh,
+            );
+            bench_model(
+                c,
+                concat!($name, "/elastic-stress-path"),
+                PlateModel::new($f, elastic, &mesh, rho),
+                &mesh,
+            );
+            bench_model(
+                c,
+                concat!($name, "/plastic-all-yielding"),
+                PlateModel::new($f, plastic.clone(), &mesh, rho),
+                &mesh,
+            );
         };
     }
     all!("q4-full", FullQ4::new(&mesh.mesh, w).unwrap());
     all!("q4-sri", SelectiveQ4::new(&mesh.mesh, w).unwrap());
-    all!("q4-1pt", OnePointQ4::new(&mesh.mesh, w, s.mesh.hourglass, elastic.p_modulus()).unwrap());
+    all!(
+        "q4-1pt",
+        OnePointQ4::new(&mesh.mesh, w, s.mesh.hourglass, elastic.p_modulus()).unwrap()
+    );
 }
 
 fn whole_steps(c: &mut Criterion) {
@@ -61,7 +89,9 @@ fn whole_steps(c: &mut Criterion) {
     s.time.end = End::At(2e-4);
     let probe = simulate(&s, &mut Quiet).unwrap().summary;
     let mut group = c.benchmark_group("time-step");
-    group.throughput(Throughput::Elements(probe.n_elements as u64 * probe.n_steps));
+    group.throughput(Throughput::Elements(
+        probe.n_elements as u64 * probe.n_steps,
+    ));
     group.sample_size(10);
     group.bench_function("example-plastic/q4-sri/0.2ms", |b| {
         b.iter_custom(|iters| {

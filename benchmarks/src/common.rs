@@ -11,8 +11,15 @@ pub const PLASTIC: &str = include_str!("../../verification/scenes/example-plasti
 /// The example scene (the paper plate), without field output and with sparse history.
 pub fn example(plastic: bool) -> Scene {
     let text = if plastic { PLASTIC } else { ELASTIC };
-    let mut s = Scene::from_yaml(text, Path::new(if plastic { "example-plastic" } else { "example-elastic" }))
-        .expect("the example scenes are valid");
+    let mut s = Scene::from_yaml(
+        text,
+        Path::new(if plastic {
+            "example-plastic"
+        } else {
+            "example-elastic"
+        }),
+    )
+    .expect("the example scenes are valid");
     s.output.fields_every = None;
     s.output.every = Some(1e-5);
     s
@@ -53,7 +60,11 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> anyhow::
 
 /// A Markdown table.
 pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
-    let mut t = format!("| {} |\n|{}|\n", header.join(" | "), vec!["---"; header.len()].join("|"));
+    let mut t = format!(
+        "| {} |\n|{}|\n",
+        header.join(" | "),
+        vec!["---"; header.len()].join("|")
+    );
     for r in rows {
         t += &format!("| {} |\n", r.join(" | "));
     }

@@ -50,7 +50,12 @@ fn attempt(scene: &Scene) -> Outcome {
             impulse_error: f64::NAN,
             note: format!("step {step}: {}", what.split(':').next().unwrap_or(&what)),
         },
-        Err(e) => Outcome { status: "refused", balance: f64::NAN, impulse_error: f64::NAN, note: e.to_string() },
+        Err(e) => Outcome {
+            status: "refused",
+            balance: f64::NAN,
+            impulse_error: f64::NAN,
+            note: e.to_string(),
+        },
     }
 }
 
@@ -72,11 +77,14 @@ fn small(plastic: bool, mesh: &str) -> Scene {
 fn stable_at(base: &Scene, cfl: f64) -> bool {
     let mut s = base.clone();
     s.time.dt = DtChoice::Cfl(cfl);
-    let dt_guess = simulate(&{
-        let mut probe = s.clone();
-        probe.time.end = End::At(1e-12);
-        probe
-    }, &mut Quiet)
+    let dt_guess = simulate(
+        &{
+            let mut probe = s.clone();
+            probe.time.end = End::At(1e-12);
+            probe
+        },
+        &mut Quiet,
+    )
     .map(|o| o.summary.dt)
     .unwrap_or(1e-7);
     s.time.end = End::At(5000.0 * dt_guess);
@@ -84,7 +92,11 @@ fn stable_at(base: &Scene, cfl: f64) -> bool {
 }
 
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
-    let cfls: Vec<f64> = if quick { vec![0.3, 0.9, 1.2] } else { (1..=13).map(|i| i as f64 / 10.0).collect() };
+    let cfls: Vec<f64> = if quick {
+        vec![0.3, 0.9, 1.2]
+    } else {
+        (1..=13).map(|i| i as f64 / 10.0).collect()
+    };
     let mut rows = Vec::new();
     let mut violations = 0;
     let mut critical = Vec::new();
@@ -111,7 +123,11 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
             // Bisection of the critical ratio between a stable and an unstable CFL.
             let (mut lo, mut hi) = (0.9, 4.0);
             if stable_at(&base, hi) {
-                critical.push(vec![mesh.into(), if plastic { "plastic" } else { "elastic" }.into(), "> 4".into()]);
+                critical.push(vec![
+                    mesh.into(),
+                    if plastic { "plastic" } else { "elastic" }.into(),
+                    "> 4".into(),
+                ]);
                 continue;
             }
             for _ in 0..(if quick { 4 } else { 10 }) {
@@ -129,22 +145,46 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
             ]);
         }
     }
-    let header = ["mesh", "material", "cfl", "status", "max_balance_error", "impulse_error", "note"];
+    let header = [
+        "mesh",
+        "material",
+        "cfl",
+        "status",
+        "max_balance_error",
+        "impulse_error",
+        "note",
+    ];
     write_csv(&out.join("stability-cfl.csv"), &header, &rows)?;
     let mut md = String::from("## CFL sweep (20x4 mesh, impact with contact, 3 ms)\n\n");
     md += &markdown_table(&header, &rows);
     md += &format!("\nRuns below cfl 1.0 not bounded: {violations}\n\n## Measured critical ratio (stable for 5000 steps)\n\n");
     md += &markdown_table(&["mesh", "material", "critical cfl"], &critical);
     let extreme = extreme_inputs(quick);
-    let eheader = ["case", "status", "max_balance_error", "impulse_error", "note"];
+    let eheader = [
+        "case",
+        "status",
+        "max_balance_error",
+        "impulse_error",
+        "note",
+    ];
     write_csv(&out.join("stability-extreme.csv"), &eheader, &extreme)?;
     md += "\n## Extreme but valid inputs (20x4 mesh unless said)\n\nStatus: `bounded` (energy balance < 1 %, impulse identity to round-off), `coarse` (bounded, balance 1-10 %: the time step resolves the event coarsely), `stopped` (a clear error), `UNBOUNDED` (a silent blow-up: a failure).\n\n";
     md += &markdown_table(&eheader, &extreme);
     std::fs::write(out.join("stability.md"), &md)?;
     println!("{md}");
-    let silent = rows.iter().chain(extreme.iter()).filter(|r| r.iter().any(|c| c == "UNBOUNDED")).count();
-    anyhow::ensure!(violations == 0, "{violations} runs below cfl 1 were not bounded");
-    anyhow::ensure!(silent == 0, "{silent} runs ended unbounded without an error");
+    let silent = rows
+        .iter()
+        .chain(extreme.iter())
+        .filter(|r| r.iter().any(|c| c == "UNBOUNDED"))
+        .count();
+    anyhow::ensure!(
+        violations == 0,
+        "{violations} runs below cfl 1 were not bounded"
+    );
+    anyhow::ensure!(
+        silent == 0,
+        "{silent} runs ended unbounded without an error"
+    );
     Ok(())
 }
 
@@ -165,26 +205,42 @@ fn extreme_inputs(quick: bool) -> Vec<Vec<String>> {
         cases.push((format!("mass {m} kg"), impactor(&|i| i.mass = m)));
     }
     for r in [1e-4, 1.0] {
-        cases.push((format!("nose radius {r} m"), impactor(&|i| i.nose_radius = r)));
+        cases.push((
+            format!("nose radius {r} m"),
+            impactor(&|i| i.nose_radius = r),
+        ));
     }
-    for (name, e) in [("very soft plate E = 1 GPa", 1e9), ("very stiff plate E = 2 TPa", 2e12)] {
+    for (name, e) in [
+        ("very soft plate E = 1 GPa", 1e9),
+        ("very stiff plate E = 2 TPa", 2e12),
+    ] {
         let mut s = impactor(&|_| {});
         s.material.youngs_modulus = e;
         if let Some(p) = &mut s.material.plasticity {
-            p.hardening = Hardening::Linear { tangent_modulus: 0.0075 * e };
+            p.hardening = Hardening::Linear {
+                tangent_modulus: 0.0075 * e,
+            };
         }
         cases.push((name.into(), s));
     }
-    for (name, nx, ny) in [("element aspect 10 (long)", 4, 8), ("element aspect 10 (tall)", 40, 2)] {
+    for (name, nx, ny) in [
+        ("element aspect 10 (long)", 4, 8),
+        ("element aspect 10 (tall)", 40, 2),
+    ] {
         let mut s = impactor(&|_| {});
         s.mesh.nx = nx;
         s.mesh.ny = ny;
         cases.push((name.into(), s));
     }
-    for (name, et) in [("zero hardening", 0.0), ("strong hardening E_t = E/2", 103.5e9)] {
+    for (name, et) in [
+        ("zero hardening", 0.0),
+        ("strong hardening E_t = E/2", 103.5e9),
+    ] {
         let mut s = impactor(&|_| {});
         if let Some(p) = &mut s.material.plasticity {
-            p.hardening = Hardening::Linear { tangent_modulus: et };
+            p.hardening = Hardening::Linear {
+                tangent_modulus: et,
+            };
         }
         cases.push((name.into(), s));
     }
@@ -200,7 +256,13 @@ fn extreme_inputs(quick: bool) -> Vec<Vec<String>> {
         .into_iter()
         .map(|(name, scene)| {
             let o = attempt(&scene);
-            vec![name, o.status.into(), format!("{:.2e}", o.balance), format!("{:.1e}", o.impulse_error), o.note]
+            vec![
+                name,
+                o.status.into(),
+                format!("{:.2e}", o.balance),
+                format!("{:.1e}", o.impulse_error),
+                o.note,
+            ]
         })
         .collect()
 }

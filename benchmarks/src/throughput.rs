@@ -18,13 +18,23 @@ fn uniform_strain(mesh: &PlateMesh, amplitude: f64) -> Vec<f64> {
     mesh.mesh
         .coords
         .iter()
-        .flat_map(|p| [amplitude * p[0] + 0.5 * amplitude * p[1], -0.3 * amplitude * p[1]])
+        .flat_map(|p| {
+            [
+                amplitude * p[0] + 0.5 * amplitude * p[1],
+                -0.3 * amplitude * p[1],
+            ]
+        })
         .collect()
 }
 
 /// Best ns per element over `reps` batches of `calls` internal-force evaluations,
 /// alternating between `u` and `-u` (for plastic materials: every point yields every call).
-fn kernel_ns<F: Formulation, M: ConstitutiveModel>(model: &mut PlateModel<F, M>, u: &[f64], calls: usize, reps: usize) -> f64 {
+fn kernel_ns<F: Formulation, M: ConstitutiveModel>(
+    model: &mut PlateModel<F, M>,
+    u: &[f64],
+    calls: usize,
+    reps: usize,
+) -> f64 {
     let minus: Vec<f64> = u.iter().map(|x| -x).collect();
     let mut f = vec![0.0; u.len()];
     let mut best = f64::INFINITY;
@@ -32,7 +42,9 @@ fn kernel_ns<F: Formulation, M: ConstitutiveModel>(model: &mut PlateModel<F, M>,
         let started = Instant::now();
         let mut sink = 0.0;
         for c in 0..calls {
-            sink += model.internal_forces(if c % 2 == 0 { u } else { &minus }, &mut f).strain;
+            sink += model
+                .internal_forces(if c % 2 == 0 { u } else { &minus }, &mut f)
+                .strain;
         }
         std::hint::black_box(sink);
         if rep > 0 {
@@ -66,20 +78,32 @@ fn measure(case: &Case, quick: bool) -> f64 {
             let uses_matrix = stiffness_matrix_pays(&f);
             match case.material {
                 "elastic-stiffness-matrix" => kernel_ns(
-                    &mut PlateModel::new(f, elastic, &mesh, m.density).with_linear_kernel(&mesh.mesh, &elastic),
+                    &mut PlateModel::new(f, elastic, &mesh, m.density)
+                        .with_linear_kernel(&mesh.mesh, &elastic),
                     &u,
                     calls,
                     reps,
                 ),
                 "elastic" if uses_matrix => kernel_ns(
-                    &mut PlateModel::new(f, elastic, &mesh, m.density).with_linear_kernel(&mesh.mesh, &elastic),
+                    &mut PlateModel::new(f, elastic, &mesh, m.density)
+                        .with_linear_kernel(&mesh.mesh, &elastic),
                     &u,
                     calls,
                     reps,
                 ),
-                "elastic" | "elastic-stress-path" => kernel_ns(&mut PlateModel::new(f, elastic, &mesh, m.density), &u, calls, reps),
+                "elastic" | "elastic-stress-path" => kernel_ns(
+                    &mut PlateModel::new(f, elastic, &mesh, m.density),
+                    &u,
+                    calls,
+                    reps,
+                ),
                 _ => kernel_ns(
-                    &mut PlateModel::new(f, VonMises::new(m).expect("plastic example"), &mesh, m.density),
+                    &mut PlateModel::new(
+                        f,
+                        VonMises::new(m).expect("plastic example"),
+                        &mesh,
+                        m.density,
+                    ),
                     &u,
                     calls,
                     reps,
@@ -90,14 +114,28 @@ fn measure(case: &Case, quick: bool) -> f64 {
     match case.element {
         ElementKind::Q4Full => go!(FullQ4::new(&mesh.mesh, w).expect("valid mesh")),
         ElementKind::Q4Sri => go!(SelectiveQ4::new(&mesh.mesh, w).expect("valid mesh")),
-        ElementKind::Q4OnePoint => go!(OnePointQ4::new(&mesh.mesh, w, scene.mesh.hourglass, elastic.p_modulus()).expect("valid mesh")),
+        ElementKind::Q4OnePoint => {
+            go!(
+                OnePointQ4::new(&mesh.mesh, w, scene.mesh.hourglass, elastic.p_modulus())
+                    .expect("valid mesh")
+            )
+        }
     }
 }
 
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
     let mut rows = Vec::new();
-    for element in [ElementKind::Q4Full, ElementKind::Q4Sri, ElementKind::Q4OnePoint] {
-        for material in ["elastic", "elastic-stiffness-matrix", "elastic-stress-path", "plastic-all-yielding"] {
+    for element in [
+        ElementKind::Q4Full,
+        ElementKind::Q4Sri,
+        ElementKind::Q4OnePoint,
+    ] {
+        for material in [
+            "elastic",
+            "elastic-stiffness-matrix",
+            "elastic-stress-path",
+            "plastic-all-yielding",
+        ] {
             let target_ns = match (element, material) {
                 (ElementKind::Q4OnePoint, "elastic") => Some(15.0),
                 (ElementKind::Q4Sri, "elastic") => Some(30.0),
@@ -112,11 +150,24 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                 format!("{ns:.1}"),
                 format!("{:.3e}", 1e9 / ns),
                 target_ns.map_or("-".into(), |t| format!("<= {t}")),
-                target_ns.map_or("-".into(), |t| if ns <= t { "met".into() } else { "missed".into() }),
+                target_ns.map_or("-".into(), |t| {
+                    if ns <= t {
+                        "met".into()
+                    } else {
+                        "missed".into()
+                    }
+                }),
             ]);
         }
     }
-    let header = ["element", "material", "ns_per_element_step", "element_steps_per_s", "target_ns", "status"];
+    let header = [
+        "element",
+        "material",
+        "ns_per_element_step",
+        "element_steps_per_s",
+        "target_ns",
+        "status",
+    ];
     write_csv(&out.join("throughput-kernels.csv"), &header, &rows)?;
     println!(
         "Element kernels (internal force + material update), 80x16 mesh ('elastic' is the path the solver uses: the stiffness matrix for q4-full and q4-sri, the stress path for q4-1pt):\n{}",
@@ -130,17 +181,45 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
         let s = &o.summary;
         let target = if plastic { "< 0.5 s" } else { "-" };
         runs.push(vec![
-            if plastic { "table1-elasto-plastic" } else { "table1-elastic" }.to_string(),
+            if plastic {
+                "table1-elasto-plastic"
+            } else {
+                "table1-elastic"
+            }
+            .to_string(),
             format!("{setup:.4}"),
             format!("{time_loop:.4}"),
             format!("{}", s.n_steps),
-            format!("{:.1}", 1e9 * time_loop / (s.n_steps as f64 * s.n_elements as f64)),
+            format!(
+                "{:.1}",
+                1e9 * time_loop / (s.n_steps as f64 * s.n_elements as f64)
+            ),
             target.into(),
-            if plastic { if setup + time_loop < 0.5 { "met" } else { "missed" } } else { "-" }.into(),
+            if plastic {
+                if setup + time_loop < 0.5 {
+                    "met"
+                } else {
+                    "missed"
+                }
+            } else {
+                "-"
+            }
+            .into(),
         ]);
     }
-    let header = ["run", "setup_s", "loop_s", "steps", "ns_per_element_step", "target", "status"];
+    let header = [
+        "run",
+        "setup_s",
+        "loop_s",
+        "steps",
+        "ns_per_element_step",
+        "target",
+        "status",
+    ];
     write_csv(&out.join("throughput-runs.csv"), &header, &runs)?;
-    println!("Whole runs (example scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}", markdown_table(&header, &runs));
+    println!(
+        "Whole runs (example scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}",
+        markdown_table(&header, &runs)
+    );
     Ok(())
 }

@@ -12,7 +12,11 @@ use plotters::prelude::*;
 
 use crate::common::{example, markdown_table, pulse, timed, write_csv};
 
-const ELEMENTS: [ElementKind; 3] = [ElementKind::Q4Full, ElementKind::Q4Sri, ElementKind::Q4OnePoint];
+const ELEMENTS: [ElementKind; 3] = [
+    ElementKind::Q4Full,
+    ElementKind::Q4Sri,
+    ElementKind::Q4OnePoint,
+];
 
 struct Problem {
     name: &'static str,
@@ -36,7 +40,11 @@ fn with(scene: &Scene, element: ElementKind, (nx, ny): (usize, usize), cfl: f64)
 fn interpolate(times: &[f64], values: &[f64], t: f64) -> f64 {
     let i = times.partition_point(|&x| x <= t).clamp(1, times.len() - 1);
     let (t0, t1) = (times[i - 1], times[i]);
-    let w = if t1 > t0 { ((t - t0) / (t1 - t0)).clamp(0.0, 1.0) } else { 0.0 };
+    let w = if t1 > t0 {
+        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     values[i - 1] * (1.0 - w) + values[i] * w
 }
 
@@ -45,13 +53,21 @@ fn history_error(run: &History, reference: &History) -> f64 {
     let (rt, rv) = (col(reference, "time_s"), col(reference, "mid_uy_m"));
     let (t, v) = (col(run, "time_s"), col(run, "mid_uy_m"));
     let peak = rv.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let sq: f64 = t.iter().zip(&v).map(|(t, v)| (v - interpolate(&rt, &rv, *t)).powi(2)).sum();
+    let sq: f64 = t
+        .iter()
+        .zip(&v)
+        .map(|(t, v)| (v - interpolate(&rt, &rv, *t)).powi(2))
+        .sum();
     (sq / t.len() as f64).sqrt() / peak
 }
 
 fn robust(o: &Outcome) -> [f64; 3] {
     let s = &o.summary;
-    [s.impulse, s.final_impactor_velocity.unwrap_or(0.0), s.max_plate_displacement]
+    [
+        s.impulse,
+        s.final_impactor_velocity.unwrap_or(0.0),
+        s.max_plate_displacement,
+    ]
 }
 
 fn error(problem: &Problem, run: &Outcome, reference: &Outcome) -> f64 {
@@ -67,20 +83,39 @@ fn error(problem: &Problem, run: &Outcome, reference: &Outcome) -> f64 {
 }
 
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
-    let levels: &[(usize, usize)] = if quick { &[(10, 2), (20, 4)] } else { &[(10, 2), (20, 4), (40, 8), (80, 16)] };
+    let levels: &[(usize, usize)] = if quick {
+        &[(10, 2), (20, 4)]
+    } else {
+        &[(10, 2), (20, 4), (40, 8), (80, 16)]
+    };
     let cfls: &[f64] = if quick { &[0.9] } else { &[0.3, 0.6, 0.9] };
     let repeats = if quick { 1 } else { 2 };
     let problems = [
-        Problem { name: "impact-elastic", scene: example(false), history_metric: false },
-        Problem { name: "impact-plastic", scene: example(true), history_metric: false },
-        Problem { name: "pulse-elastic", scene: pulse(), history_metric: true },
+        Problem {
+            name: "impact-elastic",
+            scene: example(false),
+            history_metric: false,
+        },
+        Problem {
+            name: "impact-plastic",
+            scene: example(true),
+            history_metric: false,
+        },
+        Problem {
+            name: "pulse-elastic",
+            scene: pulse(),
+            history_metric: true,
+        },
     ];
     let finest = *levels.last().expect("levels");
     let mut rows = Vec::new();
     let mut reference_rows = Vec::new();
     for p in &problems {
         let reference_level = (2 * finest.0, 2 * finest.1);
-        let reference = simulate(&with(&p.scene, ElementKind::Q4Sri, reference_level, 0.3), &mut Quiet)?;
+        let reference = simulate(
+            &with(&p.scene, ElementKind::Q4Sri, reference_level, 0.3),
+            &mut Quiet,
+        )?;
         let finest_sri = simulate(&with(&p.scene, ElementKind::Q4Sri, finest, 0.3), &mut Quiet)?;
         let own_error = error(p, &finest_sri, &reference) / 3.0;
         reference_rows.push(vec![
@@ -111,13 +146,24 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                 series.push((format!("{} cfl {cfl}", element.name()), points));
             }
         }
-        plot(&out.join(format!("work-precision-{}.svg", p.name)), p.name, p.history_metric, &series)?;
+        plot(
+            &out.join(format!("work-precision-{}.svg", p.name)),
+            p.name,
+            p.history_metric,
+            &series,
+        )?;
         println!("{}: {}", p.name, pareto_summary(&rows, p.name));
     }
-    let header = ["problem", "element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s"];
+    let header = [
+        "problem", "element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s",
+    ];
     write_csv(&out.join("work-precision.csv"), &header, &rows)?;
     let rheader = ["problem", "reference", "estimated_reference_error"];
-    write_csv(&out.join("work-precision-references.csv"), &rheader, &reference_rows)?;
+    write_csv(
+        &out.join("work-precision-references.csv"),
+        &rheader,
+        &reference_rows,
+    )?;
     println!("{}", markdown_table(&rheader, &reference_rows));
     Ok(())
 }
@@ -135,7 +181,10 @@ fn pareto_summary(rows: &[Vec<String>], problem: &str) -> String {
         .collect();
     let mut front: Vec<_> = pts
         .iter()
-        .filter(|(_, e, t)| !pts.iter().any(|(_, e2, t2)| (e2 < e && t2 <= t) || (e2 <= e && t2 < t)))
+        .filter(|(_, e, t)| {
+            !pts.iter()
+                .any(|(_, e2, t2)| (e2 < e && t2 <= t) || (e2 <= e && t2 < t))
+        })
         .collect();
     front.sort_by(|a, b| a.2.total_cmp(&b.2));
     let names: Vec<String> = front
@@ -168,7 +217,10 @@ fn plot(path: &Path, title: &str, history: bool, series: &[Series]) -> anyhow::R
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(60)
-        .build_cartesian_2d((x0 / 1.5..x1 * 1.5).log_scale(), (y0 / 1.5..y1 * 1.5).log_scale())?;
+        .build_cartesian_2d(
+            (x0 / 1.5..x1 * 1.5).log_scale(),
+            (y0 / 1.5..y1 * 1.5).log_scale(),
+        )?;
     chart
         .configure_mesh()
         .x_desc(xlabel)
@@ -179,9 +231,14 @@ fn plot(path: &Path, title: &str, history: bool, series: &[Series]) -> anyhow::R
     for (i, (name, points)) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         chart
-            .draw_series(LineSeries::new(points.iter().copied(), color.stroke_width(2)))?
+            .draw_series(LineSeries::new(
+                points.iter().copied(),
+                color.stroke_width(2),
+            ))?
             .label(name)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2))
+            });
         chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
     }
     chart

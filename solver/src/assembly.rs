@@ -40,7 +40,9 @@ impl Assembly {
     pub fn for_mesh(n_elements: usize, costly_kernel: bool) -> Assembly {
         Assembly::new(
             n_elements,
-            costly_kernel && n_elements >= PARALLEL_MIN_ELEMENTS && rayon::current_num_threads() > 1,
+            costly_kernel
+                && n_elements >= PARALLEL_MIN_ELEMENTS
+                && rayon::current_num_threads() > 1,
         )
     }
 

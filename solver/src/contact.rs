@@ -280,7 +280,11 @@ mod tests {
                 let kappa = law.alpha(p) / (p * law.alpha_slope(p));
                 let bound = 4.0 * f64::EPSILON * kappa * (law.a / law.b).abs().max(1.0);
                 let back = law.force_for(law.alpha(p)).unwrap() / law.width;
-                assert!(((back - p) / p).abs() < bound, "{frac}: {:e} vs bound {bound:e}", (back - p) / p);
+                assert!(
+                    ((back - p) / p).abs() < bound,
+                    "{frac}: {:e} vs bound {bound:e}",
+                    (back - p) / p
+                );
             }
         }
     }
@@ -334,7 +338,8 @@ mod tests {
         // 1000 x the SI alpha.
         let si = &laws()[1];
         let (e_mm, r_mm, l_mm) = (207e9 * 1e-6, 10.0, 1.0);
-        let c_mm = (1.0 - 0.09) / (std::f64::consts::PI * e_mm) + 1.0 / (std::f64::consts::PI * e_mm);
+        let c_mm =
+            (1.0 - 0.09) / (std::f64::consts::PI * e_mm) + 1.0 / (std::f64::consts::PI * e_mm);
         for p_si in [1e4, 1e6, 1e7] {
             let p_mm = p_si * 1e-3;
             let alpha_mm = p_mm * c_mm * (1.0 - (p_mm * r_mm * c_mm / (l_mm * l_mm)).ln());

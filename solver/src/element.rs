@@ -163,7 +163,11 @@ pub fn element_response<F: Formulation, M: ConstitutiveModel>(
 }
 
 /// Elastic element stiffness (8x8, N/m), column by column from the force response.
-pub fn element_stiffness<F: Formulation>(formulation: &F, elastic: &Elastic, e: usize) -> [[f64; 8]; 8] {
+pub fn element_stiffness<F: Formulation>(
+    formulation: &F,
+    elastic: &Elastic,
+    e: usize,
+) -> [[f64; 8]; 8] {
     let mut k = [[0.0; 8]; 8];
     let mut states = [(); 4];
     for j in 0..8 {
@@ -179,7 +183,12 @@ pub fn element_stiffness<F: Formulation>(formulation: &F, elastic: &Elastic, e: 
 
 /// Largest eigenvalue of `M^-1/2 K M^-1/2` for an element with lumped mass `volume rho / 4`
 /// per node: the square of its highest circular frequency, (rad/s)^2.
-pub fn element_max_eigenvalue<F: Formulation>(formulation: &F, elastic: &Elastic, density: f64, e: usize) -> f64 {
+pub fn element_max_eigenvalue<F: Formulation>(
+    formulation: &F,
+    elastic: &Elastic,
+    density: f64,
+    e: usize,
+) -> f64 {
     let k = element_stiffness(formulation, elastic, e);
     let m = 0.25 * density * formulation.volume(e);
     let a = nalgebra::SMatrix::<f64, 8, 8>::from_fn(|i, j| 0.5 * (k[i][j] + k[j][i]) / m);
@@ -239,7 +248,12 @@ impl Formulation for FullQ4 {
     #[inline(always)]
     fn strains(&self, e: usize, u: &ElementVector) -> [Strain; 4] {
         let g = &self.points[e];
-        [g[0].strain(u), g[1].strain(u), g[2].strain(u), g[3].strain(u)]
+        [
+            g[0].strain(u),
+            g[1].strain(u),
+            g[2].strain(u),
+            g[3].strain(u),
+        ]
     }
     #[inline(always)]
     fn weights(&self, e: usize) -> [f64; 4] {

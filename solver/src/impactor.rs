@@ -70,7 +70,11 @@ mod tests {
         let t = n as f64 * dt;
         let v = v0 - k * t * t / (2.0 * m);
         let x = v0 * t - k * t * t * t / (6.0 * m);
-        assert!((imp.velocity - v).abs() < 1e-12 * v0, "{} vs {v}", imp.velocity);
+        assert!(
+            (imp.velocity - v).abs() < 1e-12 * v0,
+            "{} vs {v}",
+            imp.velocity
+        );
         assert!((imp.displacement - x).abs() < 1e-12 * x.abs());
     }
 }

@@ -5,18 +5,17 @@
 use crate::assembly::Assembly;
 use crate::contact::{solve_contact_force, LineContactLaw};
 use crate::element::{
-    element_max_eigenvalue, element_response, gather, lumped_masses, ElementEnergy,
-    Formulation,
+    element_max_eigenvalue, element_response, gather, lumped_masses, ElementEnergy, Formulation,
 };
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::impactor::RigidImpactor;
 use crate::load::PrescribedLoad;
-use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::material::Elastic;
+use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::{Mesh, PlateMesh};
-use crate::stiffness::LinearKernel;
 use crate::scene::{DtChoice, End, Scene};
+use crate::stiffness::LinearKernel;
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this
 /// multiple of the largest energy the run was given.
@@ -58,7 +57,13 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
         let n = formulation.n_elements();
         let mass = lumped_masses(&formulation, mesh.mesh.n_nodes(), density);
         let inverse_mass = (0..2 * mass.len())
-            .map(|d| if mesh.fixed_dofs[d] { 0.0 } else { 1.0 / mass[d / 2] })
+            .map(|d| {
+                if mesh.fixed_dofs[d] {
+                    0.0
+                } else {
+                    1.0 / mass[d / 2]
+                }
+            })
             .collect();
         PlateModel {
             states: vec![M::State::default(); n * F::POINTS],
@@ -85,12 +90,26 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
         let (formulation, material) = (&*formulation, &*material);
         let nodes = |e: usize| formulation.nodes(e);
         match linear {
-            Some(k) => assembly.assemble(states, F::POINTS, nodes, |e, _| k.element(formulation, e, u), f),
+            Some(k) => assembly.assemble(
+                states,
+                F::POINTS,
+                nodes,
+                |e, _| k.element(formulation, e, u),
+                f,
+            ),
             None => assembly.assemble(
                 states,
                 F::POINTS,
                 nodes,
-                |e, states| element_response(formulation, material, e, &gather(formulation.nodes(e), u), states),
+                |e, states| {
+                    element_response(
+                        formulation,
+                        material,
+                        e,
+                        &gather(formulation.nodes(e), u),
+                        states,
+                    )
+                },
                 f,
             ),
         }
@@ -115,7 +134,8 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     pub fn point_stress(&self, e: usize, p: usize, u: &[f64]) -> Stress {
         let ue = gather(self.formulation.nodes(e), u);
         let strain = self.formulation.strains(e, &ue)[p];
-        self.material.stress(&strain, &self.states[e * F::POINTS + p])
+        self.material
+            .stress(&strain, &self.states[e * F::POINTS + p])
     }
 
     /// Element-average stress and equivalent plastic strain (for field output).
@@ -129,7 +149,10 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             for c in 0..4 {
                 s[c] += wp / total * sp[c];
             }
-            k += wp / total * self.material.equivalent_plastic_strain(&self.states[e * F::POINTS + p]);
+            k += wp / total
+                * self
+                    .material
+                    .equivalent_plastic_strain(&self.states[e * F::POINTS + p]);
         }
         (s, k)
     }
@@ -162,7 +185,14 @@ impl History {
 
     pub fn column(&self, name: &str) -> Option<Vec<f64>> {
         let c = self.columns.iter().position(|n| n == name)?;
-        Some(self.values.iter().skip(c).step_by(self.columns.len()).copied().collect())
+        Some(
+            self.values
+                .iter()
+                .skip(c)
+                .step_by(self.columns.len())
+                .copied()
+                .collect(),
+        )
     }
 
     pub fn row(&self, r: usize) -> &[f64] {
@@ -243,7 +273,11 @@ struct Schedule {
 
 impl Schedule {
     fn new(every: Option<f64>) -> Schedule {
-        Schedule { every, next: 0, k: 0 }
+        Schedule {
+            every,
+            next: 0,
+            k: 0,
+        }
     }
     /// Whether step `n` is due; advances past it.
     fn due(&mut self, n: u64, dt: f64) -> bool {
@@ -440,7 +474,9 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         totals.max_downward_bottom = totals.max_downward_bottom.min(u[2 * mesh.bottom + 1]);
         let want_row = rows.due(n, dt) || stop.is_some();
         for (p, max) in probes.iter().zip(totals.max_von_mises.iter_mut()) {
-            max.1 = max.1.max(von_mises(&model.point_stress(p.element, p.point, &u)));
+            max.1 = max
+                .1
+                .max(von_mises(&model.point_stress(p.element, p.point, &u)));
         }
         if want_row {
             row.clear();
@@ -509,13 +545,19 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             }
             // t_{n+1} = (n + 1) dt exactly as the next step will compute it (t + dt can round
             // differently and misplace the end of the pulse).
-            _ => prescribed.as_ref().map_or(0.0, |l| l.magnitude_at((n + 1) as f64 * dt)),
+            _ => prescribed
+                .as_ref()
+                .map_or(0.0, |l| l.magnitude_at((n + 1) as f64 * dt)),
         };
         if let Some(load) = &prescribed {
             external_work += load.work(applied, next_force, projection_before, load.projection(&u));
         }
         totals.impulse += 0.5 * (applied + next_force) * dt;
-        force = if prescribed.is_some() { 0.0 } else { next_force };
+        force = if prescribed.is_some() {
+            0.0
+        } else {
+            next_force
+        };
         n += 1;
     }
     let width = history.columns.len();
@@ -546,7 +588,14 @@ fn field_frame<F: Formulation, M: ConstitutiveModel>(
 fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
     let mut c: Vec<String> = vec!["time_s".into(), "contact_force_N".into()];
     if scene.impactor().is_some() {
-        c.extend(["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"].map(String::from));
+        c.extend(
+            [
+                "indentation_m",
+                "impactor_displacement_m",
+                "impactor_velocity_mps",
+            ]
+            .map(String::from),
+        );
     }
     c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
     for p in probes {
@@ -560,7 +609,11 @@ fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
 }
 
 /// Finds each probe's element and nearest integration point.
-fn locate_probes<F: Formulation>(scene: &Scene, mesh: &PlateMesh, formulation: &F) -> Result<Vec<Probe>> {
+fn locate_probes<F: Formulation>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    formulation: &F,
+) -> Result<Vec<Probe>> {
     scene
         .output
         .probes

@@ -57,7 +57,12 @@ impl Elastic {
     pub fn stress_of(&self, e: &Strain) -> Stress {
         let lt = self.lambda * (e[0] + e[1] + e[2]);
         let m2 = 2.0 * self.mu;
-        [lt + m2 * e[0], lt + m2 * e[1], lt + m2 * e[2], self.mu * e[3]]
+        [
+            lt + m2 * e[0],
+            lt + m2 * e[1],
+            lt + m2 * e[2],
+            self.mu * e[3],
+        ]
     }
 }
 
@@ -211,7 +216,8 @@ impl ConstitutiveModel for VonMises {
         ];
         let mean = bulk * trace;
         let volumetric_energy = 0.5 * mean * trace;
-        let q2 = 1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
+        let q2 =
+            1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
         let k_old = state.eqps;
         let sy_old = self.flow.flow_stress(k_old);
         let mut plastic_work_density = 0.0;
@@ -290,7 +296,9 @@ mod tests {
     #[test]
     fn radial_return_matches_the_uniaxial_strain_closed_form() {
         let et = 2.0e9;
-        let m = steel(Hardening::Linear { tangent_modulus: et });
+        let m = steel(Hardening::Linear {
+            tangent_modulus: et,
+        });
         let (lam, mu) = (m.elastic.lambda, m.elastic.mu);
         let bulk = lam + 2.0 * mu / 3.0;
         let h = 200e9 * et / (200e9 - et);
@@ -335,7 +343,11 @@ mod tests {
         let r = m.update(&[e, 0.0, 0.0, 0.0], &mut state);
         assert_relative_eq!(von_mises(&r.stress), 310e6, max_relative = 1e-12);
         // Consistency: 2 mu e = q + 3 mu k (uniaxial strain, deviatoric part).
-        assert_relative_eq!(2.0 * mu * e, 310e6 + 3.0 * mu * state.eqps, max_relative = 1e-12);
+        assert_relative_eq!(
+            2.0 * mu * e,
+            310e6 + 3.0 * mu * state.eqps,
+            max_relative = 1e-12
+        );
         // Inside the first segment.
         let mut s2 = PlasticState::default();
         let e2 = 250e6 / (2.0 * mu) + 0.004;
@@ -348,7 +360,9 @@ mod tests {
 
     #[test]
     fn elastic_unloading_after_yield_keeps_the_plastic_strain() {
-        let m = steel(Hardening::Linear { tangent_modulus: 1e9 });
+        let m = steel(Hardening::Linear {
+            tangent_modulus: 1e9,
+        });
         let mut state = PlasticState::default();
         m.update(&[0.01, 0.0, 0.0, 0.0], &mut state);
         let k = state.eqps;

@@ -25,7 +25,10 @@ impl Mesh {
         self.elements.iter().position(|nodes| {
             let p = nodes.map(|n| {
                 let n = n as usize;
-                [self.coords[n][0] + u[2 * n], self.coords[n][1] + u[2 * n + 1]]
+                [
+                    self.coords[n][0] + u[2 * n],
+                    self.coords[n][1] + u[2 * n + 1],
+                ]
             });
             (0..4).any(|a| {
                 let (next, prev) = (p[(a + 1) % 4], p[(a + 3) % 4]);
@@ -80,8 +83,13 @@ impl PlateMesh {
         for j in 0..ny {
             for i in 0..nx {
                 elements.push(
-                    [node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)]
-                        .map(|n| n as u32),
+                    [
+                        node(i, j),
+                        node(i + 1, j),
+                        node(i + 1, j + 1),
+                        node(i, j + 1),
+                    ]
+                    .map(|n| n as u32),
                 );
             }
         }
@@ -286,7 +294,9 @@ mod tests {
                 assert_eq!(p, q, "boundary or mid-span node {n} moved");
             } else if p != q {
                 moved += 1;
-                assert!((p[0] - q[0]).abs() <= 0.15 * 0.1 / 6.0 && (p[1] - q[1]).abs() <= 0.15 * 0.005);
+                assert!(
+                    (p[0] - q[0]).abs() <= 0.15 * 0.1 / 6.0 && (p[1] - q[1]).abs() <= 0.15 * 0.005
+                );
             }
         }
         assert_eq!(moved, 15);

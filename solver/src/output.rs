@@ -90,7 +90,10 @@ fn staging_dir(out_dir: &Path) -> PathBuf {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "out".into());
-    let parent = out_dir.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let parent = out_dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
     parent.join(format!(".{name}.partial-{}", std::process::id()))
 }
 
@@ -156,7 +159,10 @@ fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
     let mut s = String::with_capacity(64 * (np + nc));
     use std::fmt::Write as _;
     let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">");
-    let _ = writeln!(s, "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">");
+    let _ = writeln!(
+        s,
+        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">"
+    );
     for p in &mesh.coords {
         let _ = writeln!(s, "{} {} 0", p[0], p[1]);
     }
@@ -173,7 +179,10 @@ fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
         s.push_str("9\n");
     }
     s.push_str("</DataArray>\n</Cells>\n<PointData Vectors=\"displacement_m\">\n");
-    for (name, data) in [("displacement_m", &frame.displacement), ("velocity_mps", &frame.velocity)] {
+    for (name, data) in [
+        ("displacement_m", &frame.displacement),
+        ("velocity_mps", &frame.velocity),
+    ] {
         let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"3\" format=\"ascii\">");
         for d in data {
             let _ = writeln!(s, "{} {} 0", d[0], d[1]);
@@ -194,7 +203,10 @@ fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
 
 fn scalar_array(s: &mut String, name: &str, values: impl Iterator<Item = f64>) {
     use std::fmt::Write as _;
-    let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">");
+    let _ = writeln!(
+        s,
+        "<DataArray type=\"Float64\" Name=\"{name}\" format=\"ascii\">"
+    );
     for v in values {
         let _ = writeln!(s, "{v}");
     }
@@ -203,9 +215,13 @@ fn scalar_array(s: &mut String, name: &str, values: impl Iterator<Item = f64>) {
 
 /// The ParaView collection indexing the frames by time.
 fn write_pvd(frames: &[(f64, String)], path: &Path) -> Result<()> {
-    let mut s = String::from("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n");
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n",
+    );
     for (t, file) in frames {
-        s.push_str(&format!("<DataSet timestep=\"{t}\" part=\"0\" file=\"{file}\"/>\n"));
+        s.push_str(&format!(
+            "<DataSet timestep=\"{t}\" part=\"0\" file=\"{file}\"/>\n"
+        ));
     }
     s.push_str("</Collection>\n</VTKFile>\n");
     fs::write(path, s).map_err(|e| Error::write(path, e))

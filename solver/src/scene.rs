@@ -472,7 +472,10 @@ fn first_line_without_location(message: &str) -> String {
             text = after;
         }
     }
-    let text = text.split(", set DuplicateKeyPolicy").next().unwrap_or(text);
+    let text = text
+        .split(", set DuplicateKeyPolicy")
+        .next()
+        .unwrap_or(text);
     match text {
         "invalid floating point" => "expected a number".to_string(),
         other => other.to_string(),
@@ -604,9 +607,7 @@ impl Validator<'_> {
                     tangent_modulus: *et,
                 }
             }
-            HardeningFile::Table(rows) => {
-                self.hardening_table(&p.hardening, rows, yield_stress)?
-            }
+            HardeningFile::Table(rows) => self.hardening_table(&p.hardening, rows, yield_stress)?,
         };
         Ok(Plasticity {
             yield_stress,
@@ -623,7 +624,12 @@ impl Validator<'_> {
         let field = "material.plasticity.hardening.table";
         let show = |r: &[f64; 2]| format!("[{:e}, {:e}]", r[0], r[1]);
         let Some(first) = rows.first() else {
-            return self.fail(at, field, "[]", "needs at least one [eqps, flow stress] row");
+            return self.fail(
+                at,
+                field,
+                "[]",
+                "needs at least one [eqps, flow stress] row",
+            );
         };
         if first[0] != 0.0 || (first[1] - yield_stress).abs() > 1e-9 * yield_stress {
             return self.fail(
@@ -647,7 +653,9 @@ impl Validator<'_> {
                 );
             }
         }
-        Ok(Hardening::Table(rows.iter().map(|r| (r[0], r[1])).collect()))
+        Ok(Hardening::Table(
+            rows.iter().map(|r| (r[0], r[1])).collect(),
+        ))
     }
 
     fn mesh(&self, m: &MeshFile) -> Result<MeshSettings> {
@@ -760,8 +768,11 @@ impl Validator<'_> {
                         )?,
                     },
                     ContactLawFile::Johnson { datum_depth } => {
-                        let depth =
-                            self.check(datum_depth, &f("contact_law.johnson.datum_depth"), POSITIVE)?;
+                        let depth = self.check(
+                            datum_depth,
+                            &f("contact_law.johnson.datum_depth"),
+                            POSITIVE,
+                        )?;
                         if depth > plate.thickness {
                             return self.fail(
                                 datum_depth,
@@ -780,7 +791,11 @@ impl Validator<'_> {
                     mass: self.check(&i.mass, &f("mass"), POSITIVE)?,
                     velocity: self.check(&i.velocity, &f("velocity"), POSITIVE)?,
                     nose_radius: self.check(&i.nose_radius, &f("nose_radius"), POSITIVE)?,
-                    youngs_modulus: self.check(&i.youngs_modulus, &f("youngs_modulus"), POSITIVE)?,
+                    youngs_modulus: self.check(
+                        &i.youngs_modulus,
+                        &f("youngs_modulus"),
+                        POSITIVE,
+                    )?,
                     poisson_ratio: self.check(&i.poisson_ratio, &f("poisson_ratio"), POISSON)?,
                     contact_law,
                     indentation_datum: i.indentation_datum,

@@ -45,7 +45,12 @@ impl LinearKernel {
 
     /// Internal forces `K_e u_e` of element `e` with its strain and hourglass energies.
     #[inline(always)]
-    pub fn element<F: Formulation>(&self, formulation: &F, e: usize, u: &[f64]) -> (ElementVector, ElementEnergy) {
+    pub fn element<F: Formulation>(
+        &self,
+        formulation: &F,
+        e: usize,
+        u: &[f64],
+    ) -> (ElementVector, ElementEnergy) {
         let ue = gather(formulation.nodes(e), u);
         // Column by column: each lane of `fe` is an independent sum, which the compiler can
         // vectorise without reordering any addition (so the result is the same bits).
@@ -81,7 +86,12 @@ mod tests {
     use crate::scene::{ElementKind, MeshSettings, Model, Plate};
 
     fn compare<F: Formulation>(make: impl Fn(&Mesh) -> F) {
-        let plate = Plate { length: 0.2, width: 0.2, thickness: 0.02, ends: crate::scene::Ends::Clamped };
+        let plate = Plate {
+            length: 0.2,
+            width: 0.2,
+            thickness: 0.02,
+            ends: crate::scene::Ends::Clamped,
+        };
         let settings = MeshSettings {
             nx: 12,
             ny: 4,

@@ -85,9 +85,9 @@ impl Summary {
     pub fn new(scene: &Scene, mesh: &PlateMesh, t: &RunTotals, timing: Timing) -> Summary {
         let n_elements = mesh.mesh.elements.len();
         let impactor = scene.impactor();
-        let impulse_momentum_error = impactor.zip(t.final_impactor_velocity).map(|(i, vf)| {
-            (t.impulse - i.mass * (i.velocity - vf)).abs() / (i.mass * i.velocity)
-        });
+        let impulse_momentum_error = impactor
+            .zip(t.final_impactor_velocity)
+            .map(|(i, vf)| (t.impulse - i.mass * (i.velocity - vf)).abs() / (i.mass * i.velocity));
         let contact_law = match &scene.load {
             Load::Pulse(_) => "pulse".to_string(),
             Load::Traction(_) => "traction".to_string(),
@@ -129,7 +129,8 @@ impl Summary {
             final_energy: t.final_energy,
             setup_time: timing.setup_s,
             loop_time: timing.loop_s,
-            ns_per_element_step: 1e9 * timing.loop_s / (n_elements as f64 * t.n_steps.max(1) as f64),
+            ns_per_element_step: 1e9 * timing.loop_s
+                / (n_elements as f64 * t.n_steps.max(1) as f64),
         }
     }
 }

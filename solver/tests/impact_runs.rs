@@ -26,7 +26,11 @@ fn run(scene: &Scene) -> Outcome {
     simulate(scene, &mut Quiet).unwrap()
 }
 
-const ELEMENTS: [ElementKind; 3] = [ElementKind::Q4Full, ElementKind::Q4Sri, ElementKind::Q4OnePoint];
+const ELEMENTS: [ElementKind; 3] = [
+    ElementKind::Q4Full,
+    ElementKind::Q4Sri,
+    ElementKind::Q4OnePoint,
+];
 
 #[test]
 fn impulse_equals_momentum_change_to_round_off_for_every_element_and_material() {
@@ -36,7 +40,11 @@ fn impulse_equals_momentum_change_to_round_off_for_every_element_and_material() 
             scene.mesh.element = element;
             let s = run(&scene).summary;
             let err = s.impulse_momentum_error.unwrap();
-            assert!(err < 1e-9, "{element:?} plastic={}: {err:e}", scene.is_plastic());
+            assert!(
+                err < 1e-9,
+                "{element:?} plastic={}: {err:e}",
+                scene.is_plastic()
+            );
             assert!(s.impulse > 0.0 && s.final_impactor_velocity.unwrap() < 10.0);
         }
     }
@@ -73,7 +81,12 @@ fn the_same_scene_gives_bit_identical_results() {
     let a = run(&scene);
     let b = run(&scene);
     assert_eq!(a.history.values.len(), b.history.values.len());
-    assert!(a.history.values.iter().zip(&b.history.values).all(|(x, y)| x.to_bits() == y.to_bits()));
+    assert!(a
+        .history
+        .values
+        .iter()
+        .zip(&b.history.values)
+        .all(|(x, y)| x.to_bits() == y.to_bits()));
     assert_eq!(a.summary.impulse.to_bits(), b.summary.impulse.to_bits());
 }
 
@@ -88,7 +101,11 @@ fn half_model_equals_full_model() {
         assert_eq!(h.dt, f.dt);
         for (a, b, what) in [
             (h.impulse, f.impulse, "impulse"),
-            (h.max_plate_displacement, f.max_plate_displacement, "displacement"),
+            (
+                h.max_plate_displacement,
+                f.max_plate_displacement,
+                "displacement",
+            ),
             (h.peak_contact_force, f.peak_contact_force, "peak force"),
             (h.max_von_mises["A"], f.max_von_mises["A"], "von Mises at A"),
         ] {
@@ -104,25 +121,41 @@ fn half_model_equals_full_model() {
 fn the_literal_force_node_reading_shows_in_the_energy_balance() {
     let mut literal = small(PLASTIC);
     let mut top = small(PLASTIC);
-    let Load::Impactor(i) = &mut literal.load else { unreachable!() };
+    let Load::Impactor(i) = &mut literal.load else {
+        unreachable!()
+    };
     i.force_node = MidSpanNode::TopSurface;
-    let Load::Impactor(i) = &mut top.load else { unreachable!() };
+    let Load::Impactor(i) = &mut top.load else {
+        unreachable!()
+    };
     i.force_node = MidSpanNode::TopSurface;
     i.indentation_datum = MidSpanNode::TopSurface;
     let consistent = run(&small(PLASTIC)).summary.max_energy_balance_error;
     let both_top = run(&top).summary.max_energy_balance_error;
     let literal = run(&literal).summary.max_energy_balance_error;
-    assert!(consistent < 5e-3 && both_top < 5e-3, "{consistent:e} {both_top:e}");
-    assert!(literal > 10.0 * consistent.max(both_top), "literal {literal:e} vs {consistent:e}");
+    assert!(
+        consistent < 5e-3 && both_top < 5e-3,
+        "{consistent:e} {both_top:e}"
+    );
+    assert!(
+        literal > 10.0 * consistent.max(both_top),
+        "literal {literal:e} vs {consistent:e}"
+    );
 }
 
 #[test]
 fn after_contact_stops_once_the_impactor_has_left() {
     let mut scene = small(PLASTIC);
-    scene.time.end = End::AfterContact { after: 2e-4, limit: 0.05 };
+    scene.time.end = End::AfterContact {
+        after: 2e-4,
+        limit: 0.05,
+    };
     let s = run(&scene).summary;
     let end = s.contact_duration;
-    assert!(matches!(s.stop_reason, impact_solver::integrator::StopReason::AfterContact));
+    assert!(matches!(
+        s.stop_reason,
+        impact_solver::integrator::StopReason::AfterContact
+    ));
     assert!(
         s.final_time >= end + 2e-4 - 1e-9 && s.final_time < end + 2e-4 + s.dt,
         "stopped at {} for a separation at {end}",
@@ -162,10 +195,22 @@ fn a_pulse_delivers_its_impulse_and_balances_energy() {
     let o = run(&scene);
     let s = &o.summary;
     // Trapezoidal impulse of a step that starts at t = 0: F T to within F dt / 2.
-    assert!((s.impulse - 86.5).abs() <= 0.5 * 86.5e3 * s.dt * 1.0001, "{}", s.impulse);
-    assert!(s.max_energy_balance_error < 5e-3, "{:e}", s.max_energy_balance_error);
+    assert!(
+        (s.impulse - 86.5).abs() <= 0.5 * 86.5e3 * s.dt * 1.0001,
+        "{}",
+        s.impulse
+    );
+    assert!(
+        s.max_energy_balance_error < 5e-3,
+        "{:e}",
+        s.max_energy_balance_error
+    );
     assert_eq!(s.final_impactor_velocity, None);
-    for absent in ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"] {
+    for absent in [
+        "indentation_m",
+        "impactor_displacement_m",
+        "impactor_velocity_mps",
+    ] {
         assert!(!o.history.columns.iter().any(|c| c == absent), "{absent}");
     }
 }
@@ -180,9 +225,17 @@ fn an_unstable_step_stops_the_run_with_a_clear_error() {
     scene.time.allow_unstable_dt = true;
     let err = simulate(&scene, &mut Quiet).unwrap_err().to_string();
     assert!(err.contains("run stopped at step"), "{err}");
-    assert!(err.contains("unstable") || err.contains("inverted"), "{err}");
+    assert!(
+        err.contains("unstable") || err.contains("inverted"),
+        "{err}"
+    );
     assert!(err.contains("3.000 of the stable estimate"), "{err}");
-    let step: u64 = err["run stopped at step ".len()..].split(' ').next().unwrap().parse().unwrap();
+    let step: u64 = err["run stopped at step ".len()..]
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
     assert!(step < 2000, "stopped only at step {step}");
 }
 
@@ -194,7 +247,11 @@ fn a_distorted_mesh_still_conserves_momentum_and_energy() {
         scene.mesh.distortion = 0.3;
         let s = run(&scene).summary;
         assert!(s.impulse_momentum_error.unwrap() < 1e-9);
-        assert!(s.max_energy_balance_error < 5e-3, "{element:?}: {:e}", s.max_energy_balance_error);
+        assert!(
+            s.max_energy_balance_error < 5e-3,
+            "{element:?}: {:e}",
+            s.max_energy_balance_error
+        );
     }
 }
 
@@ -207,7 +264,11 @@ fn the_pulse_ends_where_the_force_stops_being_applied() {
     let text = include_str!("scenes/pulse-dt-edge.yaml");
     let s = run(&Scene::from_yaml(text, Path::new("pulse-dt-edge.yaml")).unwrap()).summary;
     let expected = 86.5e3 * 7999.5 * 1.25e-7;
-    assert!((s.impulse - expected).abs() < 1e-9 * expected, "{} vs {expected}", s.impulse);
+    assert!(
+        (s.impulse - expected).abs() < 1e-9 * expected,
+        "{} vs {expected}",
+        s.impulse
+    );
 }
 
 /// Multithreaded assembly (plastic, >= 4096 elements) must give the same bits on one
@@ -219,10 +280,21 @@ fn results_are_bit_identical_on_one_and_two_threads() {
     scene.mesh.ny = 32;
     scene.time.end = End::At(5e-5);
     let on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
         pool.install(|| run(&scene))
     };
     let (one, two) = (on(1), on(2));
-    assert!(one.history.values.iter().zip(&two.history.values).all(|(a, b)| a.to_bits() == b.to_bits()));
-    assert_eq!(one.summary.max_energy_balance_error.to_bits(), two.summary.max_energy_balance_error.to_bits());
+    assert!(one
+        .history
+        .values
+        .iter()
+        .zip(&two.history.values)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_eq!(
+        one.summary.max_energy_balance_error.to_bits(),
+        two.summary.max_energy_balance_error.to_bits()
+    );
 }

@@ -81,7 +81,12 @@ fn check_patch<F: Formulation>(name: &str, formulation: F) {
             let s = ELASTIC.stress(&formulation.strains(e, &ue)[p], &());
             for c in 0..4 {
                 let err = (s[c] - expected[c]).abs() / expected[0].abs();
-                assert!(err < 1e-10, "{name}: element {e} point {p} stress {c}: {} vs {}", s[c], expected[c]);
+                assert!(
+                    err < 1e-10,
+                    "{name}: element {e} point {p} stress {c}: {} vs {}",
+                    s[c],
+                    expected[c]
+                );
             }
         }
     }
@@ -138,6 +143,9 @@ fn rigid_body_modes_produce_no_force() {
 fn an_inverted_element_is_refused_with_its_number() {
     let (mut mesh, _) = distorted_patch();
     mesh.coords[4] = [1.3, 1.2]; // pull the centre node through the far corner
-    let err = FullQ4::new(&mesh, 1.0).err().expect("must be refused").to_string();
+    let err = FullQ4::new(&mesh, 1.0)
+        .err()
+        .expect("must be refused")
+        .to_string();
     assert!(err.contains("inverted or degenerate"), "{err}");
 }

@@ -54,7 +54,10 @@ fn measured_speed(scene: &Scene, column: &str, sign: f64, exact: f64) -> f64 {
 
 #[test]
 fn p_wave_speed_matches_the_closed_form() {
-    let (lambda, mu) = (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), E / (2.0 * (1.0 + NU)));
+    let (lambda, mu) = (
+        E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)),
+        E / (2.0 * (1.0 + NU)),
+    );
     let exact = ((lambda + 2.0 * mu) / RHO).sqrt();
     let c = measured_speed(&scene("roller", "normal: 1.0e6"), "M_syy_Pa", -1.0, exact);
     assert!((c / exact - 1.0).abs() < 5e-3, "c_p {c} vs {exact}");
@@ -71,7 +74,15 @@ fn s_wave_speed_matches_the_closed_form() {
 fn a_traction_balances_energy_and_delivers_its_impulse() {
     let o = simulate(&scene("roller", "normal: 1.0e6"), &mut Quiet).unwrap();
     let s = o.summary;
-    assert!(s.max_energy_balance_error < 1e-2, "{:e}", s.max_energy_balance_error);
+    assert!(
+        s.max_energy_balance_error < 1e-2,
+        "{:e}",
+        s.max_energy_balance_error
+    );
     // Total normal force 1 MPa x 0.2 m x 0.2 m = 40 kN for the whole run (trapezoid).
-    assert!((s.impulse - 4e4 * s.final_time).abs() < 1e-9 * s.impulse, "{}", s.impulse);
+    assert!(
+        (s.impulse - 4e4 * s.final_time).abs() < 1e-9 * s.impulse,
+        "{}",
+        s.impulse
+    );
 }

@@ -36,7 +36,15 @@ fn non_physical_values_name_line_column_field_value_and_range() {
     let e = error_for(|s| s.replace("density: 7850.0", "density: -7850.0"));
     assert_mentions(&e, &["bad.yaml:5:12", "material.density", "-7850", "> 0"]);
     let e = error_for(|s| s.replace("poisson_ratio: 0.3\nmesh", "poisson_ratio: 0.5\nmesh"));
-    assert_mentions(&e, &["bad.yaml:7:18", "material.poisson_ratio", "0.5", "(-1, 0.5)"]);
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:7:18",
+            "material.poisson_ratio",
+            "0.5",
+            "(-1, 0.5)",
+        ],
+    );
     let e = error_for(|s| s.replace("thickness: 0.020", "thickness: 0.0"));
     assert_mentions(&e, &["bad.yaml:3:49", "plate.thickness", "> 0"]);
     let e = error_for(|s| s.replace("ny: 16", "ny: 1"));
@@ -44,7 +52,15 @@ fn non_physical_values_name_line_column_field_value_and_range() {
     let e = error_for(|s| s.replace("ny: 16", "ny: 3"));
     assert_mentions(&e, &["mesh.ny", "= 3", "mid-plane"]);
     let e = error_for(|s| s.replace("x: 0.100, y: 0.0", "x: 0.100, y: 0.05"));
-    assert_mentions(&e, &["bad.yaml:24:", "output.probes.A.y", "0.05", "plate.thickness"]);
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:24:",
+            "output.probes.A.y",
+            "0.05",
+            "plate.thickness",
+        ],
+    );
     let e = error_for(|s| s.replace("end: 3.0e-3 ", "end: -1 "));
     assert_mentions(&e, &["bad.yaml:20:", "time.end", "-1"]);
     let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: 1.2}"));
@@ -54,7 +70,10 @@ fn non_physical_values_name_line_column_field_value_and_range() {
 #[test]
 fn structural_errors_name_line_and_column() {
     let e = error_for(|s| s.replace("density: 7850.0", "densty: 7850.0"));
-    assert_mentions(&e, &["bad.yaml:5:3", "unknown field `densty`", "expected one of"]);
+    assert_mentions(
+        &e,
+        &["bad.yaml:5:3", "unknown field `densty`", "expected one of"],
+    );
     let e = error_for(|s| s.replace("density: 7850.0", "density: heavy"));
     assert_mentions(&e, &["bad.yaml:5:12", "expected a number"]);
     let e = error_for(|s| s.replacen("  youngs_modulus: 207.0e9\n", "", 1));
@@ -67,7 +86,8 @@ fn structural_errors_name_line_and_column() {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("impact-scene-errors-{}-{name}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("impact-scene-errors-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -79,10 +99,16 @@ fn a_step_above_the_stable_limit_is_refused_before_any_output() {
     let scene = dir.join("scene.yaml");
     std::fs::write(&scene, EXAMPLE.replace("{cfl: 0.8}", "{fixed: 1.0e-6}")).unwrap();
     let out = dir.join("out");
-    let e = simulate_to_dir(&scene, &out, false).unwrap_err().to_string();
+    let e = simulate_to_dir(&scene, &out, false)
+        .unwrap_err()
+        .to_string();
     assert_mentions(&e, &["scene.yaml:21:", "time.dt.fixed", "stable estimate"]);
     assert!(!out.exists(), "nothing may be written");
-    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no staging folder left");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        1,
+        "no staging folder left"
+    );
 }
 
 #[test]
@@ -98,7 +124,9 @@ fn a_run_that_fails_midway_leaves_nothing_behind() {
     )
     .unwrap();
     let out = dir.join("out");
-    let e = simulate_to_dir(&scene, &out, false).unwrap_err().to_string();
+    let e = simulate_to_dir(&scene, &out, false)
+        .unwrap_err()
+        .to_string();
     assert_mentions(&e, &["run stopped at step", "no root", "maximum"]);
     assert!(!out.exists());
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);

@@ -21,7 +21,10 @@ pub struct Table {
 }
 
 pub fn read_table(path: &Path) -> anyhow::Result<Table> {
-    let mut r = csv::ReaderBuilder::new().flexible(true).has_headers(true).from_path(path)?;
+    let mut r = csv::ReaderBuilder::new()
+        .flexible(true)
+        .has_headers(true)
+        .from_path(path)?;
     let header: Vec<String> = r.headers()?.iter().map(str::to_string).collect();
     anyhow::ensure!(!header.is_empty(), "{}: no header", path.display());
     let n = header.len();
@@ -45,9 +48,20 @@ fn md_cell(s: &str) -> String {
 
 /// A Markdown table.
 pub fn md_table(t: &Table) -> String {
-    let mut s = format!("| {} |\n|{}|\n", t.header.iter().map(|h| md_cell(h)).collect::<Vec<_>>().join(" | "), vec!["---"; t.header.len()].join("|"));
+    let mut s = format!(
+        "| {} |\n|{}|\n",
+        t.header
+            .iter()
+            .map(|h| md_cell(h))
+            .collect::<Vec<_>>()
+            .join(" | "),
+        vec!["---"; t.header.len()].join("|")
+    );
     for r in &t.rows {
-        s += &format!("| {} |\n", r.iter().map(|c| md_cell(c)).collect::<Vec<_>>().join(" | "));
+        s += &format!(
+            "| {} |\n",
+            r.iter().map(|c| md_cell(c)).collect::<Vec<_>>().join(" | ")
+        );
     }
     s
 }
@@ -84,8 +98,14 @@ fn table_value(t: &Table) -> Value {
 }
 
 fn mesh_key(m: &str) -> (u64, u64, String) {
-    let mut it = m.split('x').map(|p| p.trim().parse::<u64>().unwrap_or(u64::MAX));
-    (it.next().unwrap_or(u64::MAX), it.next().unwrap_or(u64::MAX), m.to_string())
+    let mut it = m
+        .split('x')
+        .map(|p| p.trim().parse::<u64>().unwrap_or(u64::MAX));
+    (
+        it.next().unwrap_or(u64::MAX),
+        it.next().unwrap_or(u64::MAX),
+        m.to_string(),
+    )
 }
 
 fn num(s: &str) -> f64 {
@@ -96,7 +116,8 @@ fn num(s: &str) -> f64 {
 pub fn sort_work_precision(t: &mut Table) {
     let col = |name: &str| t.header.iter().position(|h| h == name);
     let (p, e, c, m) = (col("problem"), col("element"), col("cfl"), col("mesh"));
-    let get = |r: &Vec<String>, i: Option<usize>| i.and_then(|i| r.get(i)).cloned().unwrap_or_default();
+    let get =
+        |r: &Vec<String>, i: Option<usize>| i.and_then(|i| r.get(i)).cloned().unwrap_or_default();
     t.rows.sort_by(|a, b| {
         get(a, p)
             .cmp(&get(b, p))
@@ -111,7 +132,9 @@ pub fn sort_work_precision(t: &mut Table) {
 /// in one). Sorted from the fastest to the most accurate.
 pub fn pareto(t: &Table, problem: &str) -> Vec<usize> {
     let col = |name: &str| t.header.iter().position(|h| h == name);
-    let (Some(p), Some(e), Some(s), Some(l)) = (col("problem"), col("error"), col("setup_s"), col("loop_s")) else {
+    let (Some(p), Some(e), Some(s), Some(l)) =
+        (col("problem"), col("error"), col("setup_s"), col("loop_s"))
+    else {
         return Vec::new();
     };
     let pts: Vec<(usize, f64, f64)> = t
@@ -124,7 +147,10 @@ pub fn pareto(t: &Table, problem: &str) -> Vec<usize> {
         .collect();
     let mut front: Vec<(usize, f64, f64)> = pts
         .iter()
-        .filter(|(_, e, t)| !pts.iter().any(|(_, e2, t2)| (e2 < e && t2 <= t) || (e2 <= e && t2 < t)))
+        .filter(|(_, e, t)| {
+            !pts.iter()
+                .any(|(_, e2, t2)| (e2 < e && t2 <= t) || (e2 <= e && t2 < t))
+        })
         .copied()
         .collect();
     front.sort_by(|a, b| a.2.total_cmp(&b.2).then(b.1.total_cmp(&a.1)));
@@ -146,7 +172,12 @@ pub fn modified(path: &Path) -> Option<String> {
     let d = doy - (153 * mp + 2) / 5 + 1;
     let m = if mp < 10 { mp + 3 } else { mp - 9 };
     let y = yoe + era * 400 + i64::from(m <= 2);
-    Some(format!("{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z", rem / 3600, rem % 3600 / 60, rem % 60))
+    Some(format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    ))
 }
 
 /// The context of the performance section. `dir`: the benchmarks folder (None: none given
@@ -192,7 +223,10 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
     let runs = load(&runs_path);
     let (cfl_csv, extreme_csv) = if stab_md_path.is_none() {
         let f = |n: &str| Some(dir.join(n)).filter(|p| p.is_file());
-        (load(&f("stability-cfl.csv")), load(&f("stability-extreme.csv")))
+        (
+            load(&f("stability-cfl.csv")),
+            load(&f("stability-extreme.csv")),
+        )
     } else {
         (None, None)
     };
@@ -217,7 +251,10 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         .collect();
     svg_names.sort();
     for n in &svg_names {
-        let p = n.trim_start_matches("work-precision-").trim_end_matches(".svg").to_string();
+        let p = n
+            .trim_start_matches("work-precision-")
+            .trim_end_matches(".svg")
+            .to_string();
         if !problems.contains(&p) {
             problems.push(p);
         }
@@ -231,9 +268,15 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
     }
     for p in &problems {
         let svg_path = dir.join(format!("work-precision-{p}.svg"));
-        let (svg, svg_file) = match std::fs::read_to_string(&svg_path).ok().and_then(|s| svg_element(&s)) {
+        let (svg, svg_file) = match std::fs::read_to_string(&svg_path)
+            .ok()
+            .and_then(|s| svg_element(&s))
+        {
             Some(svg) => {
-                let name = format!("plots/benchmarks-work-precision-{}.svg", crate::markdown::slug(p));
+                let name = format!(
+                    "plots/benchmarks-work-precision-{}.svg",
+                    crate::markdown::slug(p)
+                );
                 let _ = std::fs::write(out.join(&name), &svg);
                 (svg, name)
             }
@@ -247,7 +290,12 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
             if let Some(pc) = col("problem") {
                 n_configs = t.rows.iter().filter(|r| r[pc] == *p).count();
             }
-            let keep: Vec<usize> = ["element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s"].iter().filter_map(|c| col(c)).collect();
+            let keep: Vec<usize> = [
+                "element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s",
+            ]
+            .iter()
+            .filter_map(|c| col(c))
+            .collect();
             let (s, l) = (col("setup_s"), col("loop_s"));
             let mut header: Vec<String> = keep.iter().map(|&i| t.header[i].clone()).collect();
             header.push("total_s".into());
@@ -256,14 +304,19 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
                 .map(|&i| {
                     let r = &t.rows[i];
                     let mut row: Vec<String> = keep.iter().map(|&k| r[k].clone()).collect();
-                    let total = s.zip(l).map(|(s, l)| num(&r[s]) + num(&r[l])).unwrap_or(f64::NAN);
+                    let total = s
+                        .zip(l)
+                        .map(|(s, l)| num(&r[s]) + num(&r[l]))
+                        .unwrap_or(f64::NAN);
                     row.push(format!("{total:.4e}"));
                     row
                 })
                 .collect();
             front = table_value(&Table { header, rows });
         }
-        wp_problems.push(json!({"name": p, "svg": svg, "svg_file": svg_file, "pareto": front, "n": n_configs}));
+        wp_problems.push(
+            json!({"name": p, "svg": svg, "svg_file": svg_file, "pareto": front, "n": n_configs}),
+        );
     }
     // The whole table, with the Pareto membership marked.
     let all = sorted.as_ref().map(|t| {
@@ -274,13 +327,19 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         let mut t2 = t.clone();
         t2.header.push("pareto".into());
         for (i, r) in t2.rows.iter_mut().enumerate() {
-            r.push(if on.contains(&i) { "front".into() } else { String::new() });
+            r.push(if on.contains(&i) {
+                "front".into()
+            } else {
+                String::new()
+            });
         }
         table_value(&t2)
     });
     let levels = sorted.as_ref().map(|t| {
         let vals = |name: &str| -> Vec<String> {
-            let Some(c) = t.header.iter().position(|h| h == name) else { return Vec::new() };
+            let Some(c) = t.header.iter().position(|h| h == name) else {
+                return Vec::new();
+            };
             let mut v: Vec<String> = Vec::new();
             for r in &t.rows {
                 if !v.contains(&r[c]) {
@@ -302,10 +361,23 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         )
     });
 
-    let stability = stab_md_path.as_ref().and_then(|p| std::fs::read_to_string(p).ok()).map(|text| {
-        let e = embed(&text, &Embed { base: dir, top_level: 4, anchor_prefix: "bench-", out, copy_to: "benchmarks", section_title: None });
-        json!({"html": e.html, "md": e.md})
-    });
+    let stability = stab_md_path
+        .as_ref()
+        .and_then(|p| std::fs::read_to_string(p).ok())
+        .map(|text| {
+            let e = embed(
+                &text,
+                &Embed {
+                    base: dir,
+                    top_level: 4,
+                    anchor_prefix: "bench-",
+                    out,
+                    copy_to: "benchmarks",
+                    section_title: None,
+                },
+            );
+            json!({"html": e.html, "md": e.md})
+        });
     json!({
         "present": true,
         "dir": dir.display().to_string(),
@@ -331,16 +403,22 @@ mod tests {
 
     fn t(rows: &[&str]) -> Table {
         Table {
-            header: "problem,element,mesh,cfl,dt_s,error,setup_s,loop_s".split(',').map(str::to_string).collect(),
-            rows: rows.iter().map(|r| r.split(',').map(str::to_string).collect()).collect(),
+            header: "problem,element,mesh,cfl,dt_s,error,setup_s,loop_s"
+                .split(',')
+                .map(str::to_string)
+                .collect(),
+            rows: rows
+                .iter()
+                .map(|r| r.split(',').map(str::to_string).collect())
+                .collect(),
         }
     }
 
     #[test]
     fn pareto_keeps_the_non_dominated() {
         let t = t(&[
-            "a,q4-sri,10x2,0.9,1e-6,1e-1,0,1.0", // fastest
-            "a,q4-sri,20x4,0.9,1e-6,1e-2,0,2.0", // more accurate, slower: front
+            "a,q4-sri,10x2,0.9,1e-6,1e-1,0,1.0",  // fastest
+            "a,q4-sri,20x4,0.9,1e-6,1e-2,0,2.0",  // more accurate, slower: front
             "a,q4-full,20x4,0.9,1e-6,5e-2,0,2.5", // dominated by the row above
             "a,q4-1pt,80x16,0.9,1e-6,1e-3,0,9.0", // most accurate
             "b,q4-sri,10x2,0.9,1e-6,1e-9,0,0.1",
@@ -351,10 +429,29 @@ mod tests {
 
     #[test]
     fn sort_by_problem_element_cfl_then_mesh_size() {
-        let mut t = t(&["b,q4-sri,10x2,0.3,0,0,0,0", "a,q4-sri,160x32,0.3,0,0,0,0", "a,q4-sri,20x4,0.3,0,0,0,0", "a,q4-sri,10x2,0.9,0,0,0,0", "a,q4-1pt,10x2,0.9,0,0,0,0"]);
+        let mut t = t(&[
+            "b,q4-sri,10x2,0.3,0,0,0,0",
+            "a,q4-sri,160x32,0.3,0,0,0,0",
+            "a,q4-sri,20x4,0.3,0,0,0,0",
+            "a,q4-sri,10x2,0.9,0,0,0,0",
+            "a,q4-1pt,10x2,0.9,0,0,0,0",
+        ]);
         sort_work_precision(&mut t);
-        let keys: Vec<String> = t.rows.iter().map(|r| format!("{} {} {} {}", r[0], r[1], r[3], r[2])).collect();
-        assert_eq!(keys, ["a q4-1pt 0.9 10x2", "a q4-sri 0.3 20x4", "a q4-sri 0.3 160x32", "a q4-sri 0.9 10x2", "b q4-sri 0.3 10x2"]);
+        let keys: Vec<String> = t
+            .rows
+            .iter()
+            .map(|r| format!("{} {} {} {}", r[0], r[1], r[3], r[2]))
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "a q4-1pt 0.9 10x2",
+                "a q4-sri 0.3 20x4",
+                "a q4-sri 0.3 160x32",
+                "a q4-sri 0.9 10x2",
+                "b q4-sri 0.3 10x2"
+            ]
+        );
     }
 
     #[test]
@@ -362,9 +459,16 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("impact-bench-csv-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let p = dir.join("s.csv");
-        std::fs::write(&p, "mesh,status,note\nuniform,stopped,step 96: element 20 (x = 1, y = 2) | inverted\n").unwrap();
+        std::fs::write(
+            &p,
+            "mesh,status,note\nuniform,stopped,step 96: element 20 (x = 1, y = 2) | inverted\n",
+        )
+        .unwrap();
         let t = read_table(&p).unwrap();
-        assert_eq!(t.rows[0][2], "step 96: element 20 (x = 1, y = 2) | inverted");
+        assert_eq!(
+            t.rows[0][2],
+            "step 96: element 20 (x = 1, y = 2) | inverted"
+        );
         assert!(md_table(&t).contains("y = 2) \\| inverted |"));
         let _ = std::fs::remove_dir_all(&dir);
     }

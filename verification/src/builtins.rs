@@ -7,33 +7,46 @@ use std::collections::BTreeMap;
 
 use impact_solver::contact::{solve_contact_force, LineContactLaw};
 use impact_solver::element::{
-    element_max_eigenvalue, element_response, gather, lumped_masses, scatter_add, Formulation, FullQ4,
-    OnePointQ4, SelectiveQ4,
+    element_max_eigenvalue, element_response, gather, lumped_masses, scatter_add, Formulation,
+    FullQ4, OnePointQ4, SelectiveQ4,
 };
 use impact_solver::impactor::RigidImpactor;
 use impact_solver::material::Elastic;
 use impact_solver::mesh::{Mesh, PlateMesh};
-use impact_solver::scene::{ContactLawChoice, ElementKind, Impactor, Material, MeshSettings, MidSpanNode, Model, Plate};
+use impact_solver::scene::{
+    ContactLawChoice, ElementKind, Impactor, Material, MeshSettings, MidSpanNode, Model, Plate,
+};
 use impact_solver::History;
 use serde_json::Value;
 
 use crate::jobs::RunData;
 
-pub const NAMES: [&str; 6] = ["hertz-law", "impactor-kinematics", "patch", "beam-bending", "modal-beam", "plane-wave"];
+pub const NAMES: [&str; 6] = [
+    "hertz-law",
+    "impactor-kinematics",
+    "patch",
+    "beam-bending",
+    "modal-beam",
+    "plane-wave",
+];
 
 type Params = BTreeMap<String, Value>;
 
 fn p_f64(p: &Params, k: &str, default: f64) -> Result<f64, String> {
     match p.get(k) {
         None => Ok(default),
-        Some(v) => v.as_f64().ok_or_else(|| format!("param {k}: {v} is not a number")),
+        Some(v) => v
+            .as_f64()
+            .ok_or_else(|| format!("param {k}: {v} is not a number")),
     }
 }
 
 fn p_str<'a>(p: &'a Params, k: &str, default: &'a str) -> Result<&'a str, String> {
     match p.get(k) {
         None => Ok(default),
-        Some(v) => v.as_str().ok_or_else(|| format!("param {k}: {v} is not a string")),
+        Some(v) => v
+            .as_str()
+            .ok_or_else(|| format!("param {k}: {v} is not a string")),
     }
 }
 
@@ -94,8 +107,14 @@ fn law(choice: ContactLawChoice) -> LineContactLaw {
 fn laws() -> Vec<(&'static str, LineContactLaw)> {
     vec![
         ("paper-m", law(ContactLawChoice::Paper { length_unit: 1.0 })),
-        ("paper-mm", law(ContactLawChoice::Paper { length_unit: 1e-3 })),
-        ("johnson", law(ContactLawChoice::Johnson { datum_depth: 0.010 })),
+        (
+            "paper-mm",
+            law(ContactLawChoice::Paper { length_unit: 1e-3 }),
+        ),
+        (
+            "johnson",
+            law(ContactLawChoice::Johnson { datum_depth: 0.010 }),
+        ),
     ]
 }
 
@@ -109,7 +128,9 @@ fn paper_alpha_in_units(p: f64, e: f64, nu_s: f64, r: f64, l: f64) -> f64 {
 
 fn hertz_law(_: &Params) -> Result<RunData, String> {
     let mut m = BTreeMap::new();
-    let fracs = [1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.999];
+    let fracs = [
+        1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.999,
+    ];
     let mut round_trip: f64 = 0.0;
     let mut coupled_round_trip: f64 = 0.0;
     let mut monotone_violations = 0.0;
@@ -125,11 +146,14 @@ fn hertz_law(_: &Params) -> Result<RunData, String> {
         for fr in fracs {
             let f = fr * f_star;
             let alpha = law.alpha(f / law.width);
-            let back = law.force_for(alpha).ok_or("force_for failed below the maximum")?;
+            let back = law
+                .force_for(alpha)
+                .ok_or("force_for failed below the maximum")?;
             round_trip = round_trip.max(((back - f) / f).abs());
             // Eq. (21) with the impactor's own compliance dt^2/(6m), dt = 1e-7 s, m = 18 kg.
             let extra = 1e-14 / (6.0 * 18.0);
-            let back = solve_contact_force(&law, extra, alpha + extra * f).map_err(|_| "eq. (21) failed below the maximum")?;
+            let back = solve_contact_force(&law, extra, alpha + extra * f)
+                .map_err(|_| "eq. (21) failed below the maximum")?;
             coupled_round_trip = coupled_round_trip.max(((back - f) / f).abs());
         }
         // Monotonic on (0, P*): 400 log-spaced points.
@@ -153,7 +177,8 @@ fn hertz_law(_: &Params) -> Result<RunData, String> {
             slope_fd = slope_fd.max((fd / law.alpha_slope(p) - 1.0).abs());
         }
         for af in [0.0, -0.0, -1e-15, -1e-9, -1e-3] {
-            let f = solve_contact_force(&law, 1e-15, af).map_err(|_| "zero branch returned an error")?;
+            let f = solve_contact_force(&law, 1e-15, af)
+                .map_err(|_| "zero branch returned an error")?;
             zero_branch = zero_branch.max(f.abs());
         }
         let too_deep = 1.01 * law.max_indentation();
@@ -197,7 +222,10 @@ fn hertz_law(_: &Params) -> Result<RunData, String> {
     }
     m.insert("unit_mm_vs_m_max_rel".into(), unit);
     let si_m = law(ContactLawChoice::Paper { length_unit: 1.0 });
-    m.insert("alpha_l1m_over_l1mm_at_1e6".into(), si_m.alpha(1e6) / si.alpha(1e6));
+    m.insert(
+        "alpha_l1m_over_l1mm_at_1e6".into(),
+        si_m.alpha(1e6) / si.alpha(1e6),
+    );
     // The law's maximum, closed form P* = l^2 / (r c) for the paper law.
     let pi = std::f64::consts::PI;
     let c = (1.0 - STEEL_NU * STEEL_NU) / (pi * STEEL_E) + 1.0 / (pi * STEEL_E);
@@ -225,8 +253,14 @@ fn impactor_kinematics(_: &Params) -> Result<RunData, String> {
     let t = n as f64 * dt;
     let v = v0 - f / mass * t;
     let x = v0 * t - 0.5 * f / mass * t * t;
-    m.insert("constant_velocity_rel".into(), ((imp.velocity - v) / v0).abs());
-    m.insert("constant_displacement_rel".into(), ((imp.displacement - x) / x).abs());
+    m.insert(
+        "constant_velocity_rel".into(),
+        ((imp.velocity - v) / v0).abs(),
+    );
+    m.insert(
+        "constant_displacement_rel".into(),
+        ((imp.displacement - x) / x).abs(),
+    );
     // Linear force F = k t: v = v0 - k t^2 / (2m), x = v0 t - k t^3 / (6m).
     let (mass, v0, k, dt, n) = (10.0, 5.0, 3e9, 1e-7, 2000);
     let mut imp = RigidImpactor::new(mass, v0);
@@ -236,8 +270,14 @@ fn impactor_kinematics(_: &Params) -> Result<RunData, String> {
     let t = n as f64 * dt;
     let v = v0 - k * t * t / (2.0 * mass);
     let x = v0 * t - k * t * t * t / (6.0 * mass);
-    m.insert("linear_velocity_rel".into(), ((imp.velocity - v) / v0).abs());
-    m.insert("linear_displacement_rel".into(), ((imp.displacement - x) / x).abs());
+    m.insert(
+        "linear_velocity_rel".into(),
+        ((imp.velocity - v) / v0).abs(),
+    );
+    m.insert(
+        "linear_displacement_rel".into(),
+        ((imp.displacement - x) / x).abs(),
+    );
     // A quadratic force is not linear in a step: the update is then only second order;
     // the error must be visible (this guards against a check that cannot fail).
     let (mass, v0, q, dt, n) = (10.0, 5.0, 1e13, 1e-6, 200);
@@ -248,7 +288,10 @@ fn impactor_kinematics(_: &Params) -> Result<RunData, String> {
     }
     let t = n as f64 * dt;
     let v = v0 - q * t * t * t / (3.0 * mass);
-    m.insert("quadratic_velocity_rel".into(), ((imp.velocity - v) / v0).abs());
+    m.insert(
+        "quadratic_velocity_rel".into(),
+        ((imp.velocity - v) / v0).abs(),
+    );
     Ok(RunData {
         metrics: m,
         ..Default::default()
@@ -274,10 +317,19 @@ macro_rules! with_formulation {
     };
 }
 
-fn formulation(kind: ElementKind, mesh: &Mesh, width: f64, elastic: &Elastic) -> Result<AnyFormulation, String> {
+fn formulation(
+    kind: ElementKind,
+    mesh: &Mesh,
+    width: f64,
+    elastic: &Elastic,
+) -> Result<AnyFormulation, String> {
     Ok(match kind {
-        ElementKind::Q4Full => AnyFormulation::Full(FullQ4::new(mesh, width).map_err(|e| e.to_string())?),
-        ElementKind::Q4Sri => AnyFormulation::Sri(SelectiveQ4::new(mesh, width).map_err(|e| e.to_string())?),
+        ElementKind::Q4Full => {
+            AnyFormulation::Full(FullQ4::new(mesh, width).map_err(|e| e.to_string())?)
+        }
+        ElementKind::Q4Sri => {
+            AnyFormulation::Sri(SelectiveQ4::new(mesh, width).map_err(|e| e.to_string())?)
+        }
         ElementKind::Q4OnePoint => AnyFormulation::One(
             OnePointQ4::new(mesh, width, 0.05, elastic.p_modulus()).map_err(|e| e.to_string())?,
         ),
@@ -285,7 +337,12 @@ fn formulation(kind: ElementKind, mesh: &Mesh, width: f64, elastic: &Elastic) ->
 }
 
 /// Internal forces of the whole mesh at `u`, and the max stress error against `exact`.
-fn assemble<F: Formulation>(f: &F, elastic: &Elastic, u: &[f64], exact: Option<&[f64; 4]>) -> (Vec<f64>, f64) {
+fn assemble<F: Formulation>(
+    f: &F,
+    elastic: &Elastic,
+    u: &[f64],
+    exact: Option<&[f64; 4]>,
+) -> (Vec<f64>, f64) {
     let mut out = vec![0.0; u.len()];
     let mut stress_err: f64 = 0.0;
     for e in 0..f.n_elements() {
@@ -333,7 +390,12 @@ fn patch(p: &Params) -> Result<RunData, String> {
     let form = formulation(kind, &mesh, width, &elastic)?;
     // Linear field u = a + G x with a general constant strain.
     let g = [[1.0e-3, 4.0e-4], [-2.0e-4, -6.0e-4]];
-    let field = |x: [f64; 2]| [1e-5 + g[0][0] * x[0] + g[0][1] * x[1], -2e-5 + g[1][0] * x[0] + g[1][1] * x[1]];
+    let field = |x: [f64; 2]| {
+        [
+            1e-5 + g[0][0] * x[0] + g[0][1] * x[1],
+            -2e-5 + g[1][0] * x[0] + g[1][1] * x[1],
+        ]
+    };
     let u: Vec<f64> = mesh.coords.iter().flat_map(|&x| field(x)).collect();
     let strain = [g[0][0], g[1][1], 0.0, g[0][1] + g[1][0]];
     let exact = elastic.stress_of(&strain);
@@ -344,10 +406,14 @@ fn patch(p: &Params) -> Result<RunData, String> {
         .map(|n| f[2 * n].hypot(f[2 * n + 1]))
         .fold(0.0, f64::max);
     let mut m = BTreeMap::new();
-    m.insert("free_node_force_rel".into(), f[2 * free].hypot(f[2 * free + 1]) / boundary_max);
+    m.insert(
+        "free_node_force_rel".into(),
+        f[2 * free].hypot(f[2 * free + 1]) / boundary_max,
+    );
     m.insert("stress_max_rel_error".into(), stress_err);
     // Global equilibrium of the boundary forces (sum of nodal forces = 0).
-    let (sx, sy): (f64, f64) = (0..mesh.coords.len()).fold((0.0, 0.0), |a, n| (a.0 + f[2 * n], a.1 + f[2 * n + 1]));
+    let (sx, sy): (f64, f64) =
+        (0..mesh.coords.len()).fold((0.0, 0.0), |a, n| (a.0 + f[2 * n], a.1 + f[2 * n + 1]));
     m.insert("force_sum_rel".into(), sx.hypot(sy) / boundary_max);
 
     // Uniform strain rate: boundary nodes follow v = G x / T; the free node, integrated by
@@ -392,7 +458,12 @@ fn patch(p: &Params) -> Result<RunData, String> {
 }
 
 /// Banded symmetric positive definite solve (Cholesky), half-bandwidth `bw`.
-fn banded_solve(n: usize, bw: usize, k: &BTreeMap<(usize, usize), f64>, rhs: &[f64]) -> Result<Vec<f64>, String> {
+fn banded_solve(
+    n: usize,
+    bw: usize,
+    k: &BTreeMap<(usize, usize), f64>,
+    rhs: &[f64],
+) -> Result<Vec<f64>, String> {
     // l[i][j - i + bw] for j in [i - bw, i].
     let w = bw + 1;
     let mut a = vec![0.0; n * w];
@@ -448,7 +519,10 @@ fn beam_bending(p: &Params) -> Result<RunData, String> {
     let nx = p_f64(p, "nx", 80.0)? as usize;
     let ny = p_f64(p, "ny", 4.0)? as usize;
     let force = p_f64(p, "force", 1.0e4)?;
-    let (e_mod, nu) = (p_f64(p, "youngs_modulus", 207e9)?, p_f64(p, "poisson_ratio", 0.3)?);
+    let (e_mod, nu) = (
+        p_f64(p, "youngs_modulus", 207e9)?,
+        p_f64(p, "poisson_ratio", 0.3)?,
+    );
     let elastic = Elastic::new(e_mod, nu);
     // Mesh settings from a minimal scene, so that fields the solver adds keep their defaults.
     let base = impact_solver::Scene::from_yaml(
@@ -594,7 +668,13 @@ fn modal_beam(p: &Params) -> Result<RunData, String> {
             let n = 4000;
             let mut s = 0.0;
             for i in 0..=n {
-                let w = if i == 0 || i == n { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+                let w = if i == 0 || i == n {
+                    1.0
+                } else if i % 2 == 1 {
+                    4.0
+                } else {
+                    2.0
+                };
                 s += w * clamped_mode(r, i as f64 / n as f64).powi(2);
             }
             let mass = rho_a * length * s / (3.0 * n as f64);
@@ -610,7 +690,11 @@ fn modal_beam(p: &Params) -> Result<RunData, String> {
         for &(om, phi, mass) in &modes {
             let amp = force * phi * phi / (mass * om * om);
             let on = 1.0 - (om * t).cos();
-            let off = if t >= duration { 1.0 - (om * (t - duration)).cos() } else { 0.0 };
+            let off = if t >= duration {
+                1.0 - (om * (t - duration)).cos()
+            } else {
+                0.0
+            };
             w += amp * (on - off);
         }
         values.extend([t, -w]);
@@ -618,10 +702,24 @@ fn modal_beam(p: &Params) -> Result<RunData, String> {
     let mut m = BTreeMap::new();
     let static_defl = force * length.powi(3) / (192.0 * ei);
     m.insert("static_deflection_m".into(), static_defl);
-    m.insert("first_period_s".into(), 2.0 * std::f64::consts::PI / modes[0].0);
-    m.insert("min_mid_uy_m".into(), values.iter().skip(1).step_by(2).copied().fold(f64::INFINITY, f64::min));
+    m.insert(
+        "first_period_s".into(),
+        2.0 * std::f64::consts::PI / modes[0].0,
+    );
+    m.insert(
+        "min_mid_uy_m".into(),
+        values
+            .iter()
+            .skip(1)
+            .step_by(2)
+            .copied()
+            .fold(f64::INFINITY, f64::min),
+    );
     // The static limit of the series (sum of amp) must equal the closed form.
-    let series_static: f64 = modes.iter().map(|&(om, phi, mass)| force * phi * phi / (mass * om * om)).sum();
+    let series_static: f64 = modes
+        .iter()
+        .map(|&(om, phi, mass)| force * phi * phi / (mass * om * om))
+        .sum();
     m.insert("series_static_m".into(), series_static);
     let mut histories = BTreeMap::new();
     histories.insert(
@@ -651,7 +749,13 @@ fn plane_wave(p: &Params) -> Result<RunData, String> {
     let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mu = e / (2.0 * (1.0 + nu));
     let (ends, traction, column, sign, exact) = match wave {
-        "p" => ("roller", "normal: 1.0e6", "M_syy_Pa", -1.0, ((lambda + 2.0 * mu) / rho).sqrt()),
+        "p" => (
+            "roller",
+            "normal: 1.0e6",
+            "M_syy_Pa",
+            -1.0,
+            ((lambda + 2.0 * mu) / rho).sqrt(),
+        ),
         "s" => ("slider", "shear: 1.0e6", "M_sxy_Pa", 1.0, (mu / rho).sqrt()),
         o => return Err(format!("wave {o:?}: expected p or s")),
     };
@@ -663,10 +767,16 @@ fn plane_wave(p: &Params) -> Result<RunData, String> {
          time: {{end: 8.0e-6, dt: {{cfl: 0.5}}}}\n\
          output: {{probes: {{M: {{x: 0.1, y: 0.01}}}}}}\n"
     );
-    let scene = impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plane-wave)")).map_err(|e| e.to_string())?;
-    let o = impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
+    let scene =
+        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plane-wave)"))
+            .map_err(|e| e.to_string())?;
+    let o =
+        impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
     let t = o.history.column("time_s").ok_or("no time")?;
-    let s = o.history.column(column).ok_or_else(|| format!("no column {column}"))?;
+    let s = o
+        .history
+        .column(column)
+        .ok_or_else(|| format!("no column {column}"))?;
     // The probe (y = h/2) lies in the element row just below mid-depth; the stress of that
     // row is the force between its node rows, so the depth is its centre's.
     let dy = h / ny as f64;
@@ -685,7 +795,10 @@ fn plane_wave(p: &Params) -> Result<RunData, String> {
     m.insert("speed_mps".into(), c);
     m.insert("closed_form_mps".into(), exact);
     m.insert("relative_error".into(), (c / exact - 1.0).abs());
-    m.insert("max_energy_balance_error".into(), o.summary.max_energy_balance_error);
+    m.insert(
+        "max_energy_balance_error".into(),
+        o.summary.max_energy_balance_error,
+    );
     let mut histories = BTreeMap::new();
     histories.insert(String::new(), o.history);
     Ok(RunData {
@@ -702,7 +815,10 @@ mod tests {
     #[test]
     fn clamped_roots_match_the_tabulated_values() {
         let r = clamped_roots(4);
-        for (a, b) in r.iter().zip([4.730040745, 7.853204624, 10.99560784, 14.13716549]) {
+        for (a, b) in r
+            .iter()
+            .zip([4.730040745, 7.853204624, 10.99560784, 14.13716549])
+        {
             assert!((a - b).abs() < 1e-8, "{a} vs {b}");
         }
         // Normalisation of this mode form: integral of phi^2 over [0, 1] is 1.
@@ -710,7 +826,13 @@ mod tests {
             let n = 4000;
             let s: f64 = (0..=n)
                 .map(|i| {
-                    let w = if i == 0 || i == n { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+                    let w = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
                     w * clamped_mode(root, i as f64 / n as f64).powi(2)
                 })
                 .sum::<f64>()

@@ -537,7 +537,9 @@ pub fn load_cases(cases_dir: &Path) -> (Vec<Case>, Vec<CaseError>) {
 }
 
 fn file_name(p: &Path) -> String {
-    p.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()
+    p.file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
 }
 
 pub fn sorted_dirs(dir: &Path) -> Vec<PathBuf> {

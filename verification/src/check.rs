@@ -6,7 +6,9 @@ use std::path::Path;
 use impact_solver::History;
 use serde::Serialize;
 
-use crate::case::{CheckFile, Compare, MeasureFile, Reduce, Refine, ReferenceFile, SeriesSpec, Norm};
+use crate::case::{
+    CheckFile, Compare, MeasureFile, Norm, Reduce, ReferenceFile, Refine, SeriesSpec,
+};
 use crate::jobs::{series_scene_name, JobResult};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
@@ -80,8 +82,16 @@ fn fmt_tol(t: &crate::case::ToleranceFile) -> String {
 }
 
 pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
-    let tol = check.tolerance.as_ref().map(|t| t.value.clone()).unwrap_or_default();
-    let reference = check.reference.as_ref().map(|r| r.value.clone()).unwrap_or_default();
+    let tol = check
+        .tolerance
+        .as_ref()
+        .map(|t| t.value.clone())
+        .unwrap_or_default();
+    let reference = check
+        .reference
+        .as_ref()
+        .map(|r| r.value.clone())
+        .unwrap_or_default();
     let mut result = CheckResult {
         id: check.id.clone(),
         title: check.title.clone(),
@@ -89,7 +99,11 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         computed: None,
         reference: None,
         error: None,
-        error_kind: if tol.relative.is_some() { "relative" } else { "absolute" },
+        error_kind: if tol.relative.is_some() {
+            "relative"
+        } else {
+            "absolute"
+        },
         compare: check.compare,
         tolerance: fmt_tol(&tol),
         tolerance_reason: tol.reason.clone().unwrap_or_default(),
@@ -101,7 +115,11 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     if let Some(skip) = &check.skip {
         if skip.value.is_skip() {
             result.status = Status::Skip;
-            result.message = skip.value.reason().unwrap_or("(no reason given)").to_string();
+            result.message = skip
+                .value
+                .reason()
+                .unwrap_or("(no reason given)")
+                .to_string();
             return result;
         }
     }
@@ -143,9 +161,16 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     };
     result.reference = Some(r);
     let floor = tol.floor.unwrap_or(0.0);
-    let allowance = tol.absolute.unwrap_or(0.0).max(tol.relative.unwrap_or(0.0) * r.abs());
+    let allowance = tol
+        .absolute
+        .unwrap_or(0.0)
+        .max(tol.relative.unwrap_or(0.0) * r.abs());
     let diff = computed - r;
-    result.error = Some(if tol.relative.is_some() && r != 0.0 { diff / r.abs() } else { diff });
+    result.error = Some(if tol.relative.is_some() && r != 0.0 {
+        diff / r.abs()
+    } else {
+        diff
+    });
     if !computed.is_finite() {
         result.message = "the computed value is not finite".into();
         return result;
@@ -161,7 +186,11 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         result.status = Status::Ok;
     } else {
         result.message = match check.compare {
-            Compare::Within => format!("|computed - reference| = {:.3e} exceeds {:.3e}", diff.abs(), allowance),
+            Compare::Within => format!(
+                "|computed - reference| = {:.3e} exceeds {:.3e}",
+                diff.abs(),
+                allowance
+            ),
             Compare::AtMost => format!("computed exceeds reference + {allowance:.3e}"),
             Compare::AtLeast => format!("computed is below reference - {allowance:.3e}"),
         };
@@ -185,10 +214,15 @@ fn job<'a>(name: &str, ctx: &'a Context) -> Result<&'a crate::jobs::RunData, Str
 }
 
 fn column(h: &History, name: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
-    let t = h.column("time_s").ok_or("the history has no time_s column")?;
-    let v = h
-        .column(name)
-        .ok_or_else(|| format!("no history column {name:?} (have: {})", h.columns.join(", ")))?;
+    let t = h
+        .column("time_s")
+        .ok_or("the history has no time_s column")?;
+    let v = h.column(name).ok_or_else(|| {
+        format!(
+            "no history column {name:?} (have: {})",
+            h.columns.join(", ")
+        )
+    })?;
     Ok((t, v))
 }
 
@@ -211,7 +245,11 @@ pub fn interpolate(t: &[f64], v: &[f64], x: f64) -> f64 {
     v[i - 1] + (v[i] - v[i - 1]) * (x - t0) / (t1 - t0)
 }
 
-pub fn measure_value(m: &MeasureFile, ctx: &Context, ref_history: Option<&(Vec<f64>, Vec<f64>)>) -> Result<f64, String> {
+pub fn measure_value(
+    m: &MeasureFile,
+    ctx: &Context,
+    ref_history: Option<&(Vec<f64>, Vec<f64>)>,
+) -> Result<f64, String> {
     let selectors = [
         m.metric.is_some(),
         m.at.is_some(),
@@ -222,13 +260,18 @@ pub fn measure_value(m: &MeasureFile, ctx: &Context, ref_history: Option<&(Vec<f
         m.gci.is_some(),
     ];
     if selectors.iter().filter(|&&b| b).count() != 1 {
-        return Err("a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into());
+        return Err(
+            "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into(),
+        );
     }
     let mut value = if let Some(name) = &m.metric {
         let d = job(scene_name(m, ctx)?, ctx)?;
-        *d.metrics
-            .get(name)
-            .ok_or_else(|| format!("no metric {name:?} (have: {})", d.metrics.keys().cloned().collect::<Vec<_>>().join(", ")))?
+        *d.metrics.get(name).ok_or_else(|| {
+            format!(
+                "no metric {name:?} (have: {})",
+                d.metrics.keys().cloned().collect::<Vec<_>>().join(", ")
+            )
+        })?
     } else if let Some(at) = &m.at {
         let d = job(scene_name(m, ctx)?, ctx)?;
         let (t, v) = column(d.history().ok_or("the scene has no history")?, &at.column)?;
@@ -237,14 +280,22 @@ pub fn measure_value(m: &MeasureFile, ctx: &Context, ref_history: Option<&(Vec<f
         let d = job(scene_name(m, ctx)?, ctx)?;
         let (t, v) = column(d.history().ok_or("the scene has no history")?, &x.column)?;
         let w = x.window.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]);
-        let sel: Vec<f64> = t.iter().zip(&v).filter(|(t, _)| **t >= w[0] && **t <= w[1]).map(|(_, v)| *v).collect();
+        let sel: Vec<f64> = t
+            .iter()
+            .zip(&v)
+            .filter(|(t, _)| **t >= w[0] && **t <= w[1])
+            .map(|(_, v)| *v)
+            .collect();
         if sel.is_empty() {
             return Err("no history rows in the window".into());
         }
         match x.reduce {
             Reduce::Max => sel.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             Reduce::Min => sel.iter().copied().fold(f64::INFINITY, f64::min),
-            Reduce::AbsMax => sel.iter().copied().fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a }),
+            Reduce::AbsMax => sel
+                .iter()
+                .copied()
+                .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a }),
             Reduce::Mean => sel.iter().sum::<f64>() / sel.len() as f64,
         }
     } else if let Some(e) = &m.error {
@@ -302,12 +353,23 @@ fn inherit(inner: &MeasureFile, outer: &MeasureFile) -> MeasureFile {
 }
 
 /// The metric of each level of a series, coarse to fine.
-pub fn series_values(series: &str, metric: &str, ctx: &Context) -> Result<(Vec<f64>, Vec<f64>, Refine), String> {
-    let s = ctx.series.get(series).ok_or_else(|| format!("no series {series:?} in this case"))?;
+pub fn series_values(
+    series: &str,
+    metric: &str,
+    ctx: &Context,
+) -> Result<(Vec<f64>, Vec<f64>, Refine), String> {
+    let s = ctx
+        .series
+        .get(series)
+        .ok_or_else(|| format!("no series {series:?} in this case"))?;
     let mut values = Vec::new();
     for level in &s.levels {
         let d = job(&series_scene_name(series, *level), ctx)?;
-        values.push(*d.metrics.get(metric).ok_or_else(|| format!("no metric {metric:?}"))?);
+        values.push(
+            *d.metrics
+                .get(metric)
+                .ok_or_else(|| format!("no metric {metric:?}"))?,
+        );
     }
     Ok((s.levels.clone(), values, s.refine))
 }
@@ -340,7 +402,12 @@ pub fn order_and_gci(f1: f64, f2: f64, f3: f64, r: f64) -> (f64, f64) {
 }
 
 fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Result<f64, String> {
-    let sources = [r.value.is_some(), r.table.is_some(), r.metric.is_some(), r.json.is_some()];
+    let sources = [
+        r.value.is_some(),
+        r.table.is_some(),
+        r.metric.is_some(),
+        r.json.is_some(),
+    ];
     if sources.iter().filter(|&&b| b).count() != 1 {
         return Err("a reference needs exactly one of value, table, metric, json".into());
     }
@@ -352,13 +419,18 @@ fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> R
         measure_value(&inherit(m, measure), ctx, None)?
     } else if let Some(j) = &r.json {
         let path = ctx.root.join(&j.file);
-        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let value: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let value: serde_json::Value =
+            serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         let mut cur = &value;
         for part in j.key.split('.') {
-            cur = cur.get(part).ok_or_else(|| format!("{}: no key {:?}", path.display(), j.key))?;
+            cur = cur
+                .get(part)
+                .ok_or_else(|| format!("{}: no key {:?}", path.display(), j.key))?;
         }
-        cur.as_f64().ok_or_else(|| format!("{}: {:?} is not a number", path.display(), j.key))?
+        cur.as_f64()
+            .ok_or_else(|| format!("{}: {:?} is not a number", path.display(), j.key))?
     } else {
         unreachable!()
     };
@@ -366,9 +438,16 @@ fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> R
 }
 
 /// A cell of a CSV table: the row whose columns match `row` (printed strings), `column`.
-pub fn table_value(path: &Path, row: &BTreeMap<String, String>, column: &str) -> Result<f64, String> {
+pub fn table_value(
+    path: &Path,
+    row: &BTreeMap<String, String>,
+    column: &str,
+) -> Result<f64, String> {
     let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let headers = rd.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
+    let headers = rd
+        .headers()
+        .map_err(|e| format!("{}: {e}", path.display()))?
+        .clone();
     let idx = |name: &str| {
         headers
             .iter()
@@ -376,7 +455,10 @@ pub fn table_value(path: &Path, row: &BTreeMap<String, String>, column: &str) ->
             .ok_or_else(|| format!("{}: no column {name:?}", path.display()))
     };
     let col = idx(column)?;
-    let keys: Vec<(usize, &String)> = row.iter().map(|(k, v)| idx(k).map(|i| (i, v))).collect::<Result<_, _>>()?;
+    let keys: Vec<(usize, &String)> = row
+        .iter()
+        .map(|(k, v)| idx(k).map(|i| (i, v)))
+        .collect::<Result<_, _>>()?;
     for rec in rd.records() {
         let rec = rec.map_err(|e| format!("{}: {e}", path.display()))?;
         if keys.iter().all(|(i, v)| rec.get(*i) == Some(v.as_str())) {
@@ -391,7 +473,10 @@ pub fn table_value(path: &Path, row: &BTreeMap<String, String>, column: &str) ->
 }
 
 /// A reference history: a CSV file (time_s + column) or a scene's / builtin's history.
-pub fn reference_history(h: &crate::case::HistoryRef, ctx: &Context) -> Result<(Vec<f64>, Vec<f64>), String> {
+pub fn reference_history(
+    h: &crate::case::HistoryRef,
+    ctx: &Context,
+) -> Result<(Vec<f64>, Vec<f64>), String> {
     match (&h.file, &h.scene) {
         (Some(f), None) => read_csv_columns(&ctx.root.join(f), &h.column),
         (None, Some(s)) => {
@@ -401,7 +486,11 @@ pub fn reference_history(h: &crate::case::HistoryRef, ctx: &Context) -> Result<(
                 .get(&h.column)
                 .or_else(|| d.history())
                 .ok_or_else(|| format!("scene {s} has no history"))?;
-            let name = if hist.columns.iter().any(|c| c == &h.column) { h.column.as_str() } else { "value" };
+            let name = if hist.columns.iter().any(|c| c == &h.column) {
+                h.column.as_str()
+            } else {
+                "value"
+            };
             column(hist, name)
         }
         _ => Err("a reference history needs exactly one of file or scene".into()),
@@ -410,13 +499,28 @@ pub fn reference_history(h: &crate::case::HistoryRef, ctx: &Context) -> Result<(
 
 pub fn read_csv_columns(path: &Path, name: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
     let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let headers = rd.headers().map_err(|e| format!("{}: {e}", path.display()))?.clone();
-    let ti = headers.iter().position(|h| h == "time_s").ok_or("no time_s column")?;
-    let vi = headers.iter().position(|h| h == name).ok_or_else(|| format!("no column {name:?}"))?;
+    let headers = rd
+        .headers()
+        .map_err(|e| format!("{}: {e}", path.display()))?
+        .clone();
+    let ti = headers
+        .iter()
+        .position(|h| h == "time_s")
+        .ok_or("no time_s column")?;
+    let vi = headers
+        .iter()
+        .position(|h| h == name)
+        .ok_or_else(|| format!("no column {name:?}"))?;
     let (mut t, mut v) = (Vec::new(), Vec::new());
     for rec in rd.records() {
         let rec = rec.map_err(|e| e.to_string())?;
-        let p = |i: usize| rec.get(i).unwrap_or("").trim().parse::<f64>().map_err(|e| e.to_string());
+        let p = |i: usize| {
+            rec.get(i)
+                .unwrap_or("")
+                .trim()
+                .parse::<f64>()
+                .map_err(|e| e.to_string())
+        };
         t.push(p(ti)?);
         v.push(p(vi)?);
     }

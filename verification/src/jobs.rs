@@ -16,7 +16,12 @@ use serde_json::Value;
 use crate::case::{Case, Loc, Refine, SceneSpec};
 
 /// Summary keys that are wall-clock times: never compared, never pinned.
-pub const TIMING_KEYS: [&str; 4] = ["wall_time_s", "setup_time_s", "loop_time_s", "ns_per_element_step"];
+pub const TIMING_KEYS: [&str; 4] = [
+    "wall_time_s",
+    "setup_time_s",
+    "loop_time_s",
+    "ns_per_element_step",
+];
 
 /// What a job produced: named scalars, histories, and the modelling for the report.
 #[derive(Debug, Clone, Default)]
@@ -47,7 +52,10 @@ pub enum Job {
         /// Words the error message must contain (empty: the run must succeed).
         expect_error: Vec<String>,
     },
-    Builtin { name: String, params: BTreeMap<String, Value> },
+    Builtin {
+        name: String,
+        params: BTreeMap<String, Value>,
+    },
 }
 
 impl Job {
@@ -101,10 +109,11 @@ impl Job {
             } if !expect_error.is_empty() => {
                 let _ = stress_bound;
                 let mut metrics = BTreeMap::new();
-                let (failed, message) = match impact_solver::simulate(scene, &mut impact_solver::Quiet) {
-                    Ok(_) => (0.0, String::new()),
-                    Err(e) => (1.0, e.to_string()),
-                };
+                let (failed, message) =
+                    match impact_solver::simulate(scene, &mut impact_solver::Quiet) {
+                        Ok(_) => (0.0, String::new()),
+                        Err(e) => (1.0, e.to_string()),
+                    };
                 metrics.insert("run_failed".to_string(), failed);
                 for w in expect_error {
                     let hit = message.to_lowercase().contains(&w.to_lowercase());
@@ -119,7 +128,9 @@ impl Job {
                 }))
             }
             Job::Scene {
-                scene, stress_bound, ..
+                scene,
+                stress_bound,
+                ..
             } => run_scene(scene, *stress_bound).map(Arc::new),
             Job::Builtin { name, params } => crate::builtins::run(name, params).map(Arc::new),
         }
@@ -140,7 +151,10 @@ impl Observer for StressBound {
     }
     fn fields(&mut self, frame: FieldFrame) -> impact_solver::Result<()> {
         for (vm, k) in frame.von_mises.iter().zip(&frame.eqps) {
-            let flow = self.flow.as_ref().map_or(self.yield_stress, |f| f.flow_stress(*k));
+            let flow = self
+                .flow
+                .as_ref()
+                .map_or(self.yield_stress, |f| f.flow_stress(*k));
             self.max_ratio = self.max_ratio.max(vm / flow);
             self.max_eqps = self.max_eqps.max(*k);
         }
@@ -161,7 +175,11 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             s.output.fields_every = Some(2e-6);
         }
         let mut obs = StressBound {
-            flow: Some(FlowCurve::new(p.yield_stress, &p.hardening, s.material.youngs_modulus)),
+            flow: Some(FlowCurve::new(
+                p.yield_stress,
+                &p.hardening,
+                s.material.youngs_modulus,
+            )),
             yield_stress: p.yield_stress,
             max_ratio: 0.0,
             max_eqps: 0.0,
@@ -181,14 +199,20 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
     let mut metrics = BTreeMap::new();
     flatten("", &summary, &mut metrics);
     let s = &outcome.summary;
-    metrics.insert("contact_intervals_count".into(), s.contact_intervals.len() as f64);
+    metrics.insert(
+        "contact_intervals_count".into(),
+        s.contact_intervals.len() as f64,
+    );
     let e0 = s.initial_energy.total();
     metrics.insert("initial_total_energy_J".into(), e0);
     metrics.insert("final_total_energy_J".into(), s.final_energy.total());
     if let (Some(i), Some(vf)) = (scene.impactor(), s.final_impactor_velocity) {
         metrics.insert("momentum_change_Ns".into(), i.mass * (i.velocity - vf));
         metrics.insert("final_momentum_kgmps".into(), i.mass * vf);
-        metrics.insert("initial_kinetic_J".into(), 0.5 * i.mass * i.velocity * i.velocity);
+        metrics.insert(
+            "initial_kinetic_J".into(),
+            0.5 * i.mass * i.velocity * i.velocity,
+        );
     }
     if let Some((ratio, eqps)) = observer_bound {
         metrics.insert("stress_flow_ratio_max".into(), ratio);
@@ -214,7 +238,11 @@ fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
         }
         Value::Object(m) => {
             for (k, v) in m {
-                let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
                 flatten(&key, v, out);
             }
         }
@@ -226,15 +254,27 @@ fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
 pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
     let p = &scene.plate;
-    m.insert("plate".into(), format!("L = {} m, W = {} m, h = {} m", p.length, p.width, p.thickness));
+    m.insert(
+        "plate".into(),
+        format!(
+            "L = {} m, W = {} m, h = {} m",
+            p.length, p.width, p.thickness
+        ),
+    );
     let mat = &scene.material;
     let plastic = match &mat.plasticity {
         None => "elastic".to_string(),
-        Some(pl) => format!("von Mises, yield {:.4e} Pa, hardening {:?}", pl.yield_stress, pl.hardening),
+        Some(pl) => format!(
+            "von Mises, yield {:.4e} Pa, hardening {:?}",
+            pl.yield_stress, pl.hardening
+        ),
     };
     m.insert(
         "material".into(),
-        format!("rho = {} kg/m3, E = {:e} Pa, nu = {}, {plastic}", mat.density, mat.youngs_modulus, mat.poisson_ratio),
+        format!(
+            "rho = {} kg/m3, E = {:e} Pa, nu = {}, {plastic}",
+            mat.density, mat.youngs_modulus, mat.poisson_ratio
+        ),
     );
     let ms = &scene.mesh;
     m.insert(
@@ -251,12 +291,21 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
             ms.grading
         ),
     );
-    m.insert("dt".into(), format!("{:.4e} s ({:.3} of stable {:.4e} s)", s.dt, s.cfl, s.dt_critical));
+    m.insert(
+        "dt".into(),
+        format!(
+            "{:.4e} s ({:.3} of stable {:.4e} s)",
+            s.dt, s.cfl, s.dt_critical
+        ),
+    );
     m.insert("contact law".into(), s.contact_law.clone());
     m.insert(
         "load".into(),
         match &scene.load {
-            Load::Pulse(pu) => format!("rectangular pulse {} N for {} s on the top mid-span node", pu.force, pu.duration),
+            Load::Pulse(pu) => format!(
+                "rectangular pulse {} N for {} s on the top mid-span node",
+                pu.force, pu.duration
+            ),
             Load::Impactor(i) => format!(
                 "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, datum {}, force on {}",
                 i.mass,
@@ -274,7 +323,9 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
         "end".into(),
         match scene.time.end {
             End::At(t) => format!("t = {t} s"),
-            End::AfterContact { after, limit } => format!("{after} s after the last contact (limit {limit} s)"),
+            End::AfterContact { after, limit } => {
+                format!("{after} s after the last contact (limit {limit} s)")
+            }
         },
     );
     m
@@ -299,12 +350,20 @@ pub fn case_jobs(case: &Case) -> Result<BTreeMap<String, Job>, String> {
         let s = &series.value;
         let base = match jobs.get(&s.scene) {
             Some(Job::Scene {
-                scene, stress_bound, ..
+                scene,
+                stress_bound,
+                ..
             }) => ((**scene).clone(), *stress_bound),
-            _ => return Err(format!("{loc}: series {name}: scene {:?} is not a scene of this case", s.scene)),
+            _ => {
+                return Err(format!(
+                    "{loc}: series {name}: scene {:?} is not a scene of this case",
+                    s.scene
+                ))
+            }
         };
         for level in &s.levels {
-            let scene = refine(&base.0, s.refine, *level).map_err(|e| format!("{loc}: series {name}: {e}"))?;
+            let scene = refine(&base.0, s.refine, *level)
+                .map_err(|e| format!("{loc}: series {name}: {e}"))?;
             jobs.insert(
                 series_scene_name(name, *level),
                 Job::Scene {
@@ -328,7 +387,8 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
             let path = dir.join(file);
             let mut scene = Scene::from_file(&path).map_err(|e| format!("{loc}: scene: {e}"))?;
             for (key, value) in &spec.set {
-                apply_override(&mut scene, key, value).map_err(|e| format!("{loc}: set {key}: {e}"))?;
+                apply_override(&mut scene, key, value)
+                    .map_err(|e| format!("{loc}: set {key}: {e}"))?;
             }
             Ok(Job::Scene {
                 scene: Box::new(scene),
@@ -348,12 +408,16 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
                 params: spec.params.clone(),
             })
         }
-        _ => Err(format!("{loc}: a scene needs exactly one of `file` or `builtin`")),
+        _ => Err(format!(
+            "{loc}: a scene needs exactly one of `file` or `builtin`"
+        )),
     }
 }
 
 fn num(v: &Value) -> Result<f64, String> {
-    v.as_f64().filter(|x| x.is_finite()).ok_or_else(|| format!("{v} is not a finite number"))
+    v.as_f64()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| format!("{v} is not a finite number"))
 }
 
 fn positive(v: &Value) -> Result<f64, String> {
@@ -366,7 +430,10 @@ fn positive(v: &Value) -> Result<f64, String> {
 }
 
 fn count(v: &Value) -> Result<usize, String> {
-    v.as_u64().filter(|&n| n > 0).map(|n| n as usize).ok_or_else(|| format!("{v} is not a positive integer"))
+    v.as_u64()
+        .filter(|&n| n > 0)
+        .map(|n| n as usize)
+        .ok_or_else(|| format!("{v} is not a positive integer"))
 }
 
 fn text(v: &Value) -> Result<&str, String> {
@@ -454,10 +521,14 @@ pub fn apply_override(scene: &mut Scene, key: &str, v: &Value) -> Result<(), Str
                 "indentation_datum" => i.indentation_datum = mid_span(v)?,
                 "force_node" => i.force_node = mid_span(v)?,
                 "contact_law.paper.length_unit" => {
-                    i.contact_law = ContactLawChoice::Paper { length_unit: positive(v)? }
+                    i.contact_law = ContactLawChoice::Paper {
+                        length_unit: positive(v)?,
+                    }
                 }
                 "contact_law.johnson.datum_depth" => {
-                    i.contact_law = ContactLawChoice::Johnson { datum_depth: positive(v)? }
+                    i.contact_law = ContactLawChoice::Johnson {
+                        datum_depth: positive(v)?,
+                    }
                 }
                 o => return Err(format!("unknown impactor key {o:?}")),
             }
@@ -476,7 +547,9 @@ pub fn refine(scene: &Scene, how: Refine, level: f64) -> Result<Scene, String> {
             let scale = |n: usize| -> Result<usize, String> {
                 let x = n as f64 * level;
                 if (x - x.round()).abs() > 1e-9 || x < 1.0 {
-                    Err(format!("level {level} does not give an integer element count from {n}"))
+                    Err(format!(
+                        "level {level} does not give an integer element count from {n}"
+                    ))
                 } else {
                     Ok(x.round() as usize)
                 }

@@ -49,7 +49,9 @@ pub fn has_provenance(root: &Path, file: &Path) -> bool {
 }
 
 fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-    let Ok(rd) = std::fs::read_dir(dir) else { return };
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return;
+    };
     let mut entries: Vec<PathBuf> = rd.filter_map(|e| e.ok().map(|e| e.path())).collect();
     entries.sort();
     for p in entries {
@@ -66,7 +68,13 @@ pub fn lint(repo: &Repo, cases: &[Case]) -> Vec<Finding> {
     let mut requirement_ids: BTreeMap<String, Loc> = BTreeMap::new();
     let mut case_ids: BTreeMap<String, Loc> = BTreeMap::new();
     for case in cases {
-        lint_case(repo, case, &mut findings, &mut requirement_ids, &mut case_ids);
+        lint_case(
+            repo,
+            case,
+            &mut findings,
+            &mut requirement_ids,
+            &mut case_ids,
+        );
     }
     // Every data file in reference-data/ has provenance.
     let mut files = Vec::new();
@@ -100,7 +108,13 @@ fn lint_case(
     if rid.value.trim().is_empty() {
         push(case.loc(rid), "empty requirement id".into());
     } else if let Some(first) = requirement_ids.get(&rid.value) {
-        push(case.loc(rid), format!("duplicate requirement id {:?} (first at {first})", rid.value));
+        push(
+            case.loc(rid),
+            format!(
+                "duplicate requirement id {:?} (first at {first})",
+                rid.value
+            ),
+        );
     } else {
         requirement_ids.insert(rid.value.clone(), case.loc(rid));
     }
@@ -111,7 +125,10 @@ fn lint_case(
         );
     }
     if let Some(first) = case_ids.get(&f.id.value) {
-        push(case.loc(&f.id), format!("duplicate case id {:?} (first at {first})", f.id.value));
+        push(
+            case.loc(&f.id),
+            format!("duplicate case id {:?} (first at {first})", f.id.value),
+        );
     } else {
         case_ids.insert(f.id.value.clone(), case.loc(&f.id));
     }
@@ -121,7 +138,10 @@ fn lint_case(
         }
     }
     if f.checks.is_empty() {
-        push(Loc::file(&case.path), "a case needs at least one check".into());
+        push(
+            Loc::file(&case.path),
+            "a case needs at least one check".into(),
+        );
     }
     let mut scenes: BTreeSet<String> = f.scenes.keys().cloned().collect();
     for (name, s) in &f.series {
@@ -129,13 +149,19 @@ fn lint_case(
             scenes.insert(crate::jobs::series_scene_name(name, *l));
         }
         if !f.scenes.contains_key(&s.value.scene) {
-            push(case.loc(s), format!("series {name}: no scene {:?}", s.value.scene));
+            push(
+                case.loc(s),
+                format!("series {name}: no scene {:?}", s.value.scene),
+            );
         }
     }
     for (name, s) in &f.scenes {
         if let Some(file) = &s.value.file {
             if !case.dir.join(file).is_file() {
-                push(case.loc(s), format!("scene {name}: no file {file:?} in the case folder"));
+                push(
+                    case.loc(s),
+                    format!("scene {name}: no file {file:?} in the case folder"),
+                );
             }
         }
     }
@@ -149,23 +175,41 @@ fn lint_case(
         let mut measure_findings = Vec::new();
         let case_skipped = f.skip.as_ref().is_some_and(|s| s.value.is_skip());
         if !case_skipped {
-            lint_measure(&k.measure.value, f.scenes.len() == 1, &scenes, &f.series, &mut measure_findings);
+            lint_measure(
+                &k.measure.value,
+                f.scenes.len() == 1,
+                &scenes,
+                &f.series,
+                &mut measure_findings,
+            );
         }
         for m in measure_findings {
             push(case.loc(&k.measure), format!("check {}: {m}", k.id));
         }
         if let Some(s) = &k.skip {
             if s.value.is_skip() && s.value.reason().is_none() {
-                push(case.loc(s), format!("check {}: a skip needs a reason: skip: \"why\"", k.id));
+                push(
+                    case.loc(s),
+                    format!("check {}: a skip needs a reason: skip: \"why\"", k.id),
+                );
             }
         }
         if let Some(kf) = &k.known_failure {
             if kf.trim().is_empty() {
-                push(loc.clone(), format!("check {}: known_failure needs a reason", k.id));
+                push(
+                    loc.clone(),
+                    format!("check {}: known_failure needs a reason", k.id),
+                );
             }
         }
         match &k.reference {
-            None => push(loc.clone(), format!("check {}: no reference (needs kind, a value source and `source`)", k.id)),
+            None => push(
+                loc.clone(),
+                format!(
+                    "check {}: no reference (needs kind, a value source and `source`)",
+                    k.id
+                ),
+            ),
             Some(r) => {
                 let rloc = case.loc(r);
                 let rv = &r.value;
@@ -173,11 +217,17 @@ fn lint_case(
                     push(rloc.clone(), format!("check {}: the reference has no kind (analytical | independent code | paper | invariant | regression | acceptance)", k.id));
                 }
                 if rv.source.as_deref().is_none_or(|s| s.trim().is_empty()) {
-                    push(rloc.clone(), format!("check {}: the reference has no source line", k.id));
+                    push(
+                        rloc.clone(),
+                        format!("check {}: the reference has no source line", k.id),
+                    );
                 }
                 if let Some(p) = &rv.pending {
                     if p.trim().is_empty() {
-                        push(rloc.clone(), format!("check {}: a pending reference needs a reason", k.id));
+                        push(
+                            rloc.clone(),
+                            format!("check {}: a pending reference needs a reason", k.id),
+                        );
                     }
                 }
                 let mut files = Vec::new();
@@ -195,7 +245,13 @@ fn lint_case(
                 for file in files {
                     let path = repo.root.join(file);
                     if !Path::new(file).starts_with("reference-data") {
-                        push(rloc.clone(), format!("check {}: reference file {file:?} must live under reference-data/", k.id));
+                        push(
+                            rloc.clone(),
+                            format!(
+                                "check {}: reference file {file:?} must live under reference-data/",
+                                k.id
+                            ),
+                        );
                     } else if rv.pending.is_some() {
                         // Not there yet: it must come with its provenance note.
                     } else if !has_provenance(&repo.root, &path) {
@@ -208,24 +264,45 @@ fn lint_case(
                     let mut fs = Vec::new();
                     lint_measure(m, true, &scenes, &f.series, &mut fs);
                     for m in fs {
-                        push(rloc.clone(), format!("check {}: reference metric: {m}", k.id));
+                        push(
+                            rloc.clone(),
+                            format!("check {}: reference metric: {m}", k.id),
+                        );
                     }
                 }
             }
         }
         match &k.tolerance {
-            None => push(loc.clone(), format!("check {}: no tolerance (relative and/or absolute, with a reason)", k.id)),
+            None => push(
+                loc.clone(),
+                format!(
+                    "check {}: no tolerance (relative and/or absolute, with a reason)",
+                    k.id
+                ),
+            ),
             Some(t) => {
                 let tv = &t.value;
                 if tv.reason.as_deref().is_none_or(|s| s.trim().is_empty()) {
-                    push(case.loc(t), format!("check {}: the tolerance has no reason", k.id));
+                    push(
+                        case.loc(t),
+                        format!("check {}: the tolerance has no reason", k.id),
+                    );
                 }
                 let bad = |x: Option<f64>| x.is_some_and(|v| !(v.is_finite() && v >= 0.0));
                 if bad(tv.relative) || bad(tv.absolute) || bad(tv.floor) {
-                    push(case.loc(t), format!("check {}: tolerances must be finite and >= 0", k.id));
+                    push(
+                        case.loc(t),
+                        format!("check {}: tolerances must be finite and >= 0", k.id),
+                    );
                 }
                 if tv.relative.is_none() && tv.absolute.is_none() {
-                    push(case.loc(t), format!("check {}: the tolerance needs relative and/or absolute (0 for exact)", k.id));
+                    push(
+                        case.loc(t),
+                        format!(
+                            "check {}: the tolerance needs relative and/or absolute (0 for exact)",
+                            k.id
+                        ),
+                    );
                 }
             }
         }
@@ -252,7 +329,9 @@ fn lint_measure(
     .filter(|&&b| b)
     .count();
     if n != 1 {
-        out.push("a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into());
+        out.push(
+            "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into(),
+        );
     }
     if let Some(s) = &m.scene {
         if !scenes.contains(s) {
@@ -269,7 +348,9 @@ fn lint_measure(
     } else if let Some(q) = m.order.as_ref().or(m.gci.as_ref()) {
         match series.get(&q.series) {
             None => out.push(format!("no series {:?} in this case", q.series)),
-            Some(s) if s.value.levels.len() < 3 => out.push(format!("series {:?} needs three levels", q.series)),
+            Some(s) if s.value.levels.len() < 3 => {
+                out.push(format!("series {:?} needs three levels", q.series))
+            }
             _ => {}
         }
     } else if m.scene.is_none() && !has_default {

@@ -9,7 +9,11 @@ use impact_verification::report::ReportOptions;
 use impact_verification::runner::{self, Options, Repo};
 
 #[derive(Parser)]
-#[command(name = "impact", version, about = "Explicit impact solver (Dokko & Kim 2004) and its verification")]
+#[command(
+    name = "impact",
+    version,
+    about = "Explicit impact solver (Dokko & Kim 2004) and its verification"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -113,13 +117,24 @@ fn main() -> ExitCode {
             reconstruction,
             root,
         } => {
-            let report = report.then_some(ReportOptions { benchmarks, reconstruction });
+            let report = report.then_some(ReportOptions {
+                benchmarks,
+                reconstruction,
+            });
             verify(selectors, filter, jobs, out, light, report, root)
         }
         Command::Lint { root } => lint(root),
-        Command::Report { from, out, benchmarks, reconstruction } => {
+        Command::Report {
+            from,
+            out,
+            benchmarks,
+            reconstruction,
+        } => {
             let out = out.unwrap_or_else(|| from.clone());
-            let opts = ReportOptions { benchmarks, reconstruction };
+            let opts = ReportOptions {
+                benchmarks,
+                reconstruction,
+            };
             match impact_verification::report::write_report_with(&from, &out, &opts) {
                 Ok(files) => {
                     for f in files {
@@ -165,7 +180,11 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
         println!("lint: {} cases, {checks} checks: clean", cases.len());
         ExitCode::SUCCESS
     } else {
-        eprintln!("lint: {} unreadable case file(s), {} finding(s)", errors.len(), findings.len());
+        eprintln!(
+            "lint: {} unreadable case file(s), {} finding(s)",
+            errors.len(),
+            findings.len()
+        );
         ExitCode::from(2)
     }
 }
@@ -211,7 +230,10 @@ fn verify(
         eprintln!("error: cannot write {}: {e}", out.display());
         return ExitCode::from(2);
     }
-    println!("wrote {}/results.json, junit.xml, matrix.txt ({wall:.1} s, {jobs} jobs)", out.display());
+    println!(
+        "wrote {}/results.json, junit.xml, matrix.txt ({wall:.1} s, {jobs} jobs)",
+        out.display()
+    );
     if let Some(opts) = report {
         match impact_verification::report::write_report_with(&out, &out, &opts) {
             Ok(files) => {
@@ -235,15 +257,25 @@ fn verify(
 fn print_summary(s: &impact_solver::Summary) {
     println!("impulse                 {:>14.6e} N s", s.impulse);
     println!("peak contact force      {:>14.6e} N", s.peak_contact_force);
-    println!("max plate displacement  {:>14.6e} m", s.max_plate_displacement);
-    println!("contact duration        {:>14.6e} s ({} interval(s))", s.contact_duration, s.contact_intervals.len());
+    println!(
+        "max plate displacement  {:>14.6e} m",
+        s.max_plate_displacement
+    );
+    println!(
+        "contact duration        {:>14.6e} s ({} interval(s))",
+        s.contact_duration,
+        s.contact_intervals.len()
+    );
     if let Some(v) = s.final_impactor_velocity {
         println!("final impactor velocity {:>14.6e} m/s", v);
     }
     for (probe, vm) in &s.max_von_mises {
         println!("max von Mises at {probe:<6} {:>14.6e} Pa", vm);
     }
-    println!("energy balance error    {:>14.6e} (max)", s.max_energy_balance_error);
+    println!(
+        "energy balance error    {:>14.6e} (max)",
+        s.max_energy_balance_error
+    );
     if let Some(e) = s.impulse_momentum_error {
         println!("impulse-momentum error  {:>14.6e} (relative)", e);
     }

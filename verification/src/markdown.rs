@@ -39,7 +39,10 @@ pub struct Embedded {
 }
 
 fn options() -> Options {
-    Options::ENABLE_TABLES | Options::ENABLE_FOOTNOTES | Options::ENABLE_STRIKETHROUGH | Options::ENABLE_TASKLISTS
+    Options::ENABLE_TABLES
+        | Options::ENABLE_FOOTNOTES
+        | Options::ENABLE_STRIKETHROUGH
+        | Options::ENABLE_TASKLISTS
 }
 
 /// A link or image destination that names a file next to the page: its path and its path
@@ -55,7 +58,10 @@ fn local(base: &Path, url: &str) -> Option<(PathBuf, String, String)> {
     };
     let path = path.replace("%20", " ");
     let rel = Path::new(&path);
-    if rel.components().any(|c| !matches!(c, Component::Normal(_) | Component::CurDir)) {
+    if rel
+        .components()
+        .any(|c| !matches!(c, Component::Normal(_) | Component::CurDir))
+    {
         return None;
     }
     let rel: Vec<String> = rel
@@ -123,8 +129,16 @@ pub fn escape(s: &str) -> String {
 pub fn img_data_uri(path: &Path, alt: &str, title: &str) -> Option<String> {
     let m = mime(path)?;
     let bytes = std::fs::read(path).ok()?;
-    let title = if title.is_empty() { String::new() } else { format!(" title=\"{}\"", escape(title)) };
-    Some(format!("<img class=\"figure\" alt=\"{}\"{title} src=\"data:{m};base64,{}\">", escape(alt), base64(&bytes)))
+    let title = if title.is_empty() {
+        String::new()
+    } else {
+        format!(" title=\"{}\"", escape(title))
+    };
+    Some(format!(
+        "<img class=\"figure\" alt=\"{}\"{title} src=\"data:{m};base64,{}\">",
+        escape(alt),
+        base64(&bytes)
+    ))
 }
 
 /// An SVG file's `<svg>` element as text for inlining in HTML (the XML prolog, doctype and
@@ -167,9 +181,14 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
     let headings: Vec<(usize, usize, String, Range<usize>)> = {
         let mut v = Vec::new();
         let mut current: Option<(usize, usize, String, Range<usize>)> = None;
-        for (k, (e, r)) in Parser::new_ext(text, options()).into_offset_iter().enumerate() {
+        for (k, (e, r)) in Parser::new_ext(text, options())
+            .into_offset_iter()
+            .enumerate()
+        {
             match e {
-                Event::Start(Tag::Heading { level, .. }) => current = Some((k, level_num(level), String::new(), r)),
+                Event::Start(Tag::Heading { level, .. }) => {
+                    current = Some((k, level_num(level), String::new(), r))
+                }
                 Event::Text(t) | Event::Code(t) => {
                     if let Some(c) = current.as_mut() {
                         c.2.push_str(&t);
@@ -245,7 +264,10 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
         edits.push((r.clone(), String::new()));
     }
     for (event, range) in parser.into_offset_iter() {
-        if title_range.as_ref().is_some_and(|t| range.start >= t.start && range.end <= t.end) {
+        if title_range
+            .as_ref()
+            .is_some_and(|t| range.start >= t.start && range.end <= t.end)
+        {
             continue;
         }
         match event {
@@ -268,9 +290,14 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                     }
                 }
             }
-            Event::Start(Tag::Image { dest_url, .. }) | Event::Start(Tag::Link { dest_url, .. }) => {
-                let Some((path, rel, frag)) = local(how.base, &dest_url) else { continue };
-                let Some(new) = copy(&path, &rel, &mut out) else { continue };
+            Event::Start(Tag::Image { dest_url, .. })
+            | Event::Start(Tag::Link { dest_url, .. }) => {
+                let Some((path, rel, frag)) = local(how.base, &dest_url) else {
+                    continue;
+                };
+                let Some(new) = copy(&path, &rel, &mut out) else {
+                    continue;
+                };
                 let src = &text[range.clone()];
                 for open in ["](<", "]("] {
                     if let Some(i) = src.rfind(&format!("{open}{}", dest_url.as_ref())) {
@@ -301,11 +328,19 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
     // A link to a local SVG points at the page's inline figure of it; a linked SVG the page
     // does not show is inlined after the top-level block holding the link.
     let events: Vec<Event> = Parser::new_ext(text, options()).collect();
-    let figure_id = |rel: &str| format!("{}fig-{}", how.anchor_prefix, slug(&rel.replace(['/', '.'], "-")));
+    let figure_id = |rel: &str| {
+        format!(
+            "{}fig-{}",
+            how.anchor_prefix,
+            slug(&rel.replace(['/', '.'], "-"))
+        )
+    };
     let mut shown: Vec<String> = events
         .iter()
         .filter_map(|e| match e {
-            Event::Start(Tag::Image { dest_url, .. }) => local(how.base, dest_url).filter(|l| l.0.is_file() && mime(&l.0).is_some()).map(|l| l.1),
+            Event::Start(Tag::Image { dest_url, .. }) => local(how.base, dest_url)
+                .filter(|l| l.0.is_file() && mime(&l.0).is_some())
+                .map(|l| l.1),
             _ => None,
         })
         .collect();
@@ -325,12 +360,20 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
     let mut pending: Vec<String> = Vec::new();
     let mut i = 0;
     if title.is_some() {
-        i = events.iter().position(|e| matches!(e, Event::End(TagEnd::Heading(_)))).map_or(0, |j| j + 1);
+        i = events
+            .iter()
+            .position(|e| matches!(e, Event::End(TagEnd::Heading(_))))
+            .map_or(0, |j| j + 1);
     }
     while i < events.len() {
         let mut last = i; // the last event this step consumed
         match &events[i] {
-            Event::Start(Tag::Heading { level, id, classes, attrs }) => {
+            Event::Start(Tag::Heading {
+                level,
+                id,
+                classes,
+                attrs,
+            }) => {
                 let mut j = i + 1;
                 let mut words = String::new();
                 while j < events.len() && !matches!(events[j], Event::End(TagEnd::Heading(_))) {
@@ -339,7 +382,13 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                     }
                     j += 1;
                 }
-                let mut anchor = format!("{}{}", how.anchor_prefix, id.as_deref().map(str::to_string).unwrap_or_else(|| slug(&words)));
+                let mut anchor = format!(
+                    "{}{}",
+                    how.anchor_prefix,
+                    id.as_deref()
+                        .map(str::to_string)
+                        .unwrap_or_else(|| slug(&words))
+                );
                 let base_anchor = anchor.clone();
                 let mut k = 1;
                 while used_ids.contains(&anchor) {
@@ -354,8 +403,12 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                     attrs: attrs.clone(),
                 }));
             }
-            Event::End(TagEnd::Heading(level)) => html_events.push(Event::End(TagEnd::Heading(shifted(*level, shift)))),
-            Event::Start(Tag::Image { dest_url, title, .. }) => {
+            Event::End(TagEnd::Heading(level)) => {
+                html_events.push(Event::End(TagEnd::Heading(shifted(*level, shift))))
+            }
+            Event::Start(Tag::Image {
+                dest_url, title, ..
+            }) => {
                 // The alt text, up to the matching end.
                 let mut j = i + 1;
                 let mut nested = 0;
@@ -375,7 +428,11 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                         let img = match img_data_uri(&path, &alt, title) {
                             Some(img) if !with_id.contains(&rel) => {
                                 with_id.push(rel.clone());
-                                img.replacen("<img ", &format!("<img id=\"{}\" ", figure_id(&rel)), 1)
+                                img.replacen(
+                                    "<img ",
+                                    &format!("<img id=\"{}\" ", figure_id(&rel)),
+                                    1,
+                                )
                             }
                             Some(img) => img,
                             None => {
@@ -391,9 +448,19 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                     None => html_events.push(events[i].clone()),
                 }
             }
-            Event::Start(Tag::Link { link_type, dest_url, title, id }) => {
+            Event::Start(Tag::Link {
+                link_type,
+                dest_url,
+                title,
+                id,
+            }) => {
                 let link = |dest: String| {
-                    Event::Start(Tag::Link { link_type: *link_type, dest_url: CowStr::from(dest), title: title.clone(), id: id.clone() })
+                    Event::Start(Tag::Link {
+                        link_type: *link_type,
+                        dest_url: CowStr::from(dest),
+                        title: title.clone(),
+                        id: id.clone(),
+                    })
                 };
                 if let Some(anchor) = dest_url.strip_prefix('#') {
                     html_events.push(link(format!("#{}{anchor}", how.anchor_prefix)));
@@ -406,7 +473,11 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                             if let Some(img) = img_data_uri(&path, &rel, title) {
                                 html_events.pop();
                                 html_events.push(link(format!("#{}", figure_id(&rel))));
-                                pending.push(img.replacen("<img ", &format!("<img id=\"{}\" ", figure_id(&rel)), 1));
+                                pending.push(img.replacen(
+                                    "<img ",
+                                    &format!("<img id=\"{}\" ", figure_id(&rel)),
+                                    1,
+                                ));
                                 shown.push(rel.clone());
                                 with_id.push(rel);
                             }
@@ -419,13 +490,19 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             e => html_events.push(e.clone()),
         }
         if !pending.is_empty() && matches!(events[last], Event::End(_)) && depth_after[last] == 0 {
-            html_events.push(Event::Html(CowStr::from(format!("<p>{}</p>\n", pending.join(" ")))));
+            html_events.push(Event::Html(CowStr::from(format!(
+                "<p>{}</p>\n",
+                pending.join(" ")
+            ))));
             pending.clear();
         }
         i = last + 1;
     }
     if !pending.is_empty() {
-        html_events.push(Event::Html(CowStr::from(format!("<p>{}</p>\n", pending.join(" ")))));
+        html_events.push(Event::Html(CowStr::from(format!(
+            "<p>{}</p>\n",
+            pending.join(" ")
+        ))));
     }
     pulldown_cmark::html::push_html(&mut out.html, html_events.into_iter());
     out
@@ -437,7 +514,15 @@ mod tests {
 
     #[test]
     fn base64_matches_rfc4648_examples() {
-        for (a, b) in [("", ""), ("f", "Zg=="), ("fo", "Zm8="), ("foo", "Zm9v"), ("foob", "Zm9vYg=="), ("fooba", "Zm9vYmE="), ("foobar", "Zm9vYmFy")] {
+        for (a, b) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
             assert_eq!(base64(a.as_bytes()), b);
         }
     }
@@ -445,15 +530,32 @@ mod tests {
     #[test]
     fn a_title_repeating_the_section_goes() {
         let dir = std::env::temp_dir();
-        let how = |t| Embed { base: &dir, top_level: 3, anchor_prefix: "", out: &dir, copy_to: "x", section_title: t };
+        let how = |t| Embed {
+            base: &dir,
+            top_level: 3,
+            anchor_prefix: "",
+            out: &dir,
+            copy_to: "x",
+            section_title: t,
+        };
         let text = "# Reproducing Dokko & Kim (2004)\n\nIntro.\n\n## Summary\n\nText.\n";
         let e = embed(text, &how(Some("Reproducing Dokko & Kim (2004)")));
         assert_eq!(e.md, "\nIntro.\n\n### Summary\n\nText.\n");
-        assert!(e.html.starts_with("<p>Intro.</p>") && e.html.contains("<h3 id=\"summary\">Summary</h3>"), "{}", e.html);
+        assert!(
+            e.html.starts_with("<p>Intro.</p>")
+                && e.html.contains("<h3 id=\"summary\">Summary</h3>"),
+            "{}",
+            e.html
+        );
         // Another title, or none asked for: kept.
         for t in [Some("Something else"), None] {
             let e = embed(text, &how(t));
-            assert!(e.md.starts_with("### Reproducing Dokko & Kim (2004)\n") && e.md.contains("#### Summary"), "{}", e.md);
+            assert!(
+                e.md.starts_with("### Reproducing Dokko & Kim (2004)\n")
+                    && e.md.contains("#### Summary"),
+                "{}",
+                e.md
+            );
         }
     }
 
@@ -464,7 +566,10 @@ mod tests {
         assert!(local(b, "#sec").is_none());
         assert!(local(b, "/etc/passwd").is_none());
         assert!(local(b, "../secret.svg").is_none());
-        assert_eq!(local(b, "./plots/a.svg#v").map(|l| (l.1, l.2)), Some(("plots/a.svg".into(), "#v".into())));
+        assert_eq!(
+            local(b, "./plots/a.svg#v").map(|l| (l.1, l.2)),
+            Some(("plots/a.svg".into(), "#v".into()))
+        );
     }
 
     #[test]
@@ -473,22 +578,60 @@ mod tests {
         let out = dir.join("out");
         std::fs::create_dir_all(&out).unwrap();
         std::fs::write(dir.join("fig.svg"), "<?xml version=\"1.0\"?><svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"></svg>").unwrap();
-        std::fs::write(dir.join("other.svg"), "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>").unwrap();
+        std::fs::write(
+            dir.join("other.svg"),
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"></svg>",
+        )
+        .unwrap();
         let text = "# Title\n\nSee [fig](fig.svg) and [the part](#part-two).\n\nPart two\n--------\n\n![a figure](fig.svg)\n\n```\n# not a heading\n```\n\n![gone](gone.svg)\n\n- a list, [only linked](other.svg)\n- more\n\nAfter.\n\n[ref]: fig.svg\n";
-        let e = embed(text, &Embed { base: &dir, top_level: 3, anchor_prefix: "p-", out: &out, copy_to: "page", section_title: None });
+        let e = embed(
+            text,
+            &Embed {
+                base: &dir,
+                top_level: 3,
+                anchor_prefix: "p-",
+                out: &out,
+                copy_to: "page",
+                section_title: None,
+            },
+        );
         assert!(e.md.starts_with("### Title\n"), "{}", e.md);
         assert!(e.md.contains("#### Part two\n\n"), "{}", e.md);
-        assert!(e.md.contains("[fig](page/fig.svg)") && e.md.contains("![a figure](page/fig.svg)") && e.md.contains("[ref]: page/fig.svg"), "{}", e.md);
+        assert!(
+            e.md.contains("[fig](page/fig.svg)")
+                && e.md.contains("![a figure](page/fig.svg)")
+                && e.md.contains("[ref]: page/fig.svg"),
+            "{}",
+            e.md
+        );
         assert!(e.md.contains("# not a heading"), "code blocks untouched");
         assert!(e.md.contains("![gone](gone.svg)"));
         assert!(out.join("page/fig.svg").is_file());
         assert_eq!(e.missing, vec!["gone.svg".to_string()]);
-        assert!(e.html.contains("<h3 id=\"p-title\">Title</h3>") && e.html.contains("<h4 id=\"p-part-two\">"), "{}", e.html);
+        assert!(
+            e.html.contains("<h3 id=\"p-title\">Title</h3>")
+                && e.html.contains("<h4 id=\"p-part-two\">"),
+            "{}",
+            e.html
+        );
         assert!(e.html.contains("href=\"#p-part-two\""));
-        assert_eq!(e.html.matches("src=\"data:image/svg+xml;base64,").count(), 2, "each SVG inlined once: {}", e.html);
-        assert!(e.html.contains("<a href=\"#p-fig-fig-svg\">fig</a>") && e.html.contains("<img id=\"p-fig-fig-svg\""), "a link to a shown figure jumps to it");
+        assert_eq!(
+            e.html.matches("src=\"data:image/svg+xml;base64,").count(),
+            2,
+            "each SVG inlined once: {}",
+            e.html
+        );
+        assert!(
+            e.html.contains("<a href=\"#p-fig-fig-svg\">fig</a>")
+                && e.html.contains("<img id=\"p-fig-fig-svg\""),
+            "a link to a shown figure jumps to it"
+        );
         // A linked SVG the page does not show: inlined after the list that holds the link.
-        let (list_end, fig, after) = (e.html.find("</ul>").unwrap(), e.html.find("id=\"p-fig-other-svg\"").unwrap(), e.html.find("After.").unwrap());
+        let (list_end, fig, after) = (
+            e.html.find("</ul>").unwrap(),
+            e.html.find("id=\"p-fig-other-svg\"").unwrap(),
+            e.html.find("After.").unwrap(),
+        );
         assert!(list_end < fig && fig < after, "{}", e.html);
         assert!(e.md.contains("[only linked](page/other.svg)"));
         assert!(e.html.contains("figure gone.svg not found"));

@@ -7,7 +7,10 @@ use crate::runner::Repo;
 /// Writes environment.json (commit, rustc, machine, date, wall time) next to results.json.
 pub fn write_environment(repo: &Repo, out: &Path, wall_s: f64, jobs: usize) -> std::io::Result<()> {
     let env = environment(repo, wall_s, jobs);
-    std::fs::write(out.join("environment.json"), serde_json::to_string_pretty(&env).map_err(std::io::Error::other)? + "\n")
+    std::fs::write(
+        out.join("environment.json"),
+        serde_json::to_string_pretty(&env).map_err(std::io::Error::other)? + "\n",
+    )
 }
 
 fn command(cmd: &str, args: &[&str], dir: &Path) -> String {
@@ -22,11 +25,19 @@ fn command(cmd: &str, args: &[&str], dir: &Path) -> String {
 }
 
 pub fn environment(repo: &Repo, wall_s: f64, jobs: usize) -> serde_json::Value {
-    let dirty = command("git", &["status", "--porcelain", "--untracked-files=no"], &repo.root);
+    let dirty = command(
+        "git",
+        &["status", "--porcelain", "--untracked-files=no"],
+        &repo.root,
+    );
     let commit = command("git", &["rev-parse", "HEAD"], &repo.root);
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|t| t.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
         .unwrap_or_else(|| "unknown".into());
     serde_json::json!({
         "commit": if dirty.is_empty() || dirty == "unknown" { commit } else { format!("{commit} (with uncommitted changes)") },
@@ -54,8 +65,16 @@ pub fn svg_plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> S
 
 fn try_plot(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> Result<String, String> {
     use plotters::prelude::*;
-    let pts = series.iter().flat_map(|s| s.1.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let pts = series
+        .iter()
+        .flat_map(|s| s.1.iter())
+        .filter(|p| p.0.is_finite() && p.1.is_finite());
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for p in pts {
         x0 = x0.min(p.0);
         x1 = x1.max(p.0);
@@ -159,12 +178,26 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
         let title = p["title"].as_str().unwrap_or("");
         let scale = p["scale"].as_f64().unwrap_or(1.0);
         let unit = p["unit"].as_str().unwrap_or("");
-        let scenes: Vec<&str> = p["scenes"].as_array().into_iter().flatten().filter_map(|s| s.as_str()).collect();
-        let columns: Vec<&str> = p["columns"].as_array().into_iter().flatten().filter_map(|s| s.as_str()).collect();
+        let scenes: Vec<&str> = p["scenes"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|s| s.as_str())
+            .collect();
+        let columns: Vec<&str> = p["columns"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|s| s.as_str())
+            .collect();
         let mut series: Vec<Series> = Vec::new();
         let load = |path: &Path, col: &str| {
-            crate::check::read_csv_columns(path, col)
-                .map(|(t, v)| t.iter().zip(&v).map(|(t, v)| (t * 1e3, v * scale)).collect::<Vec<_>>())
+            crate::check::read_csv_columns(path, col).map(|(t, v)| {
+                t.iter()
+                    .zip(&v)
+                    .map(|(t, v)| (t * 1e3, v * scale))
+                    .collect::<Vec<_>>()
+            })
         };
         if let Some(col) = p["column"].as_str() {
             for s in &scenes {
@@ -172,15 +205,39 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
                     series.push((s.to_string(), d, false));
                 }
             }
-            for r in p["references"].as_array().into_iter().flatten().filter_map(|s| s.as_str()) {
-                let path = if r.starts_with("reference-data") { root.join(r) } else { dir.join(r).join("history.csv") };
+            for r in p["references"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(|s| s.as_str())
+            {
+                let path = if r.starts_with("reference-data") {
+                    root.join(r)
+                } else {
+                    dir.join(r).join("history.csv")
+                };
                 if let Ok(d) = load(&path, col) {
-                    let label = if r.starts_with("reference-data") { format!("ref: {}", r.trim_start_matches("reference-data/").trim_end_matches("/history.csv")) } else { format!("ref: {r}") };
+                    let label = if r.starts_with("reference-data") {
+                        format!(
+                            "ref: {}",
+                            r.trim_start_matches("reference-data/")
+                                .trim_end_matches("/history.csv")
+                        )
+                    } else {
+                        format!("ref: {r}")
+                    };
                     series.push((label, d, true));
                 }
             }
-            let ylabel = if unit.is_empty() { col.to_string() } else { format!("{col} ({unit})") };
-            out.push((title.to_string(), svg_plot(title, "time (ms)", &ylabel, &series)));
+            let ylabel = if unit.is_empty() {
+                col.to_string()
+            } else {
+                format!("{col} ({unit})")
+            };
+            out.push((
+                title.to_string(),
+                svg_plot(title, "time (ms)", &ylabel, &series),
+            ));
         } else {
             for s in &scenes {
                 let mut series: Vec<Series> = Vec::new();
@@ -189,16 +246,29 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
                         series.push((col.to_string(), d, false));
                     }
                 }
-                out.push((format!("{title} ({s})"), svg_plot(title, "time (ms)", unit, &series)));
+                out.push((
+                    format!("{title} ({s})"),
+                    svg_plot(title, "time (ms)", unit, &series),
+                ));
             }
         }
     }
     // Convergence plots: log10 |f - f_extrapolated| against log10 h (h = 1 / level).
     if let Some(series) = c["series"].as_object() {
         for (name, sd) in series {
-            let levels: Vec<f64> = sd["levels"].as_array().into_iter().flatten().filter_map(get_f).collect();
+            let levels: Vec<f64> = sd["levels"]
+                .as_array()
+                .into_iter()
+                .flatten()
+                .filter_map(get_f)
+                .collect();
             for (metric, vals) in sd["metrics"].as_object().into_iter().flatten() {
-                let f: Vec<f64> = vals.as_array().into_iter().flatten().filter_map(get_f).collect();
+                let f: Vec<f64> = vals
+                    .as_array()
+                    .into_iter()
+                    .flatten()
+                    .filter_map(get_f)
+                    .collect();
                 let n = f.len();
                 if n < 3 || levels.len() != n {
                     continue;
@@ -215,17 +285,35 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
                         .filter(|q| q.1.is_finite())
                         .collect();
                     let (hx, hy) = pts[pts.len() - 1];
-                    let fit: Vec<(f64, f64)> = pts.iter().map(|q| (q.0, hy + p * (q.0 - hx))).collect();
+                    let fit: Vec<(f64, f64)> =
+                        pts.iter().map(|q| (q.0, hy + p * (q.0 - hx))).collect();
                     out.push((
                         title.clone(),
-                        svg_plot(&title, "log10 (h / h_base)", "log10 |f - f_extrapolated|", &[
-                            ("runs".into(), pts, false),
-                            (format!("slope p = {p:.2}"), fit, true),
-                        ]),
+                        svg_plot(
+                            &title,
+                            "log10 (h / h_base)",
+                            "log10 |f - f_extrapolated|",
+                            &[
+                                ("runs".into(), pts, false),
+                                (format!("slope p = {p:.2}"), fit, true),
+                            ],
+                        ),
                     ));
                 } else {
-                    let pts: Vec<(f64, f64)> = levels.iter().zip(&f).map(|(l, v)| ((1.0 / l).log10(), *v)).collect();
-                    out.push((title.clone(), svg_plot(&title, "log10 (h / h_base)", metric, &[("runs".into(), pts, false)])));
+                    let pts: Vec<(f64, f64)> = levels
+                        .iter()
+                        .zip(&f)
+                        .map(|(l, v)| ((1.0 / l).log10(), *v))
+                        .collect();
+                    out.push((
+                        title.clone(),
+                        svg_plot(
+                            &title,
+                            "log10 (h / h_base)",
+                            metric,
+                            &[("runs".into(), pts, false)],
+                        ),
+                    ));
                 }
             }
         }
@@ -234,7 +322,9 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
 }
 
 fn slug(s: &str) -> String {
-    s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '-' }).collect()
+    s.chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect()
 }
 
 /// Where the reconstruction of the paper's lost data (issue 5, `scripts/reconstruct.py`)
@@ -259,19 +349,26 @@ pub fn write_report(from: &Path, out: &Path) -> anyhow::Result<Vec<PathBuf>> {
 
 /// The reconstruction page's section: the page in HTML and Markdown, or that it is missing.
 fn reconstruction_context(path: &Path, root: &Path, out: &Path) -> serde_json::Value {
-    let shown = path.strip_prefix(root).unwrap_or(path).display().to_string();
+    let shown = path
+        .strip_prefix(root)
+        .unwrap_or(path)
+        .display()
+        .to_string();
     let Ok(text) = std::fs::read_to_string(path) else {
         return serde_json::json!({"present": false, "path": shown});
     };
     let base = path.parent().unwrap_or(Path::new("."));
-    let e = crate::markdown::embed(&text, &crate::markdown::Embed {
-        base,
-        top_level: 3,
-        anchor_prefix: "recon-",
-        out,
-        copy_to: "reconstruction",
-        section_title: Some("Reproducing Dokko & Kim (2004)"),
-    });
+    let e = crate::markdown::embed(
+        &text,
+        &crate::markdown::Embed {
+            base,
+            top_level: 3,
+            anchor_prefix: "recon-",
+            out,
+            copy_to: "reconstruction",
+            section_title: Some("Reproducing Dokko & Kim (2004)"),
+        },
+    );
     let written = crate::bench_report::modified(path).unwrap_or_else(|| "unknown".into());
     serde_json::json!({
         "present": true, "path": shown, "written": written,
@@ -281,13 +378,21 @@ fn reconstruction_context(path: &Path, root: &Path, out: &Path) -> serde_json::V
 
 /// Writes index.html, report.md and plots/*.svg from a verify output folder, with the
 /// benchmarks and reconstruction page of `opts`.
-pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyhow::Result<Vec<PathBuf>> {
+pub fn write_report_with(
+    from: &Path,
+    out: &Path,
+    opts: &ReportOptions,
+) -> anyhow::Result<Vec<PathBuf>> {
     use anyhow::Context;
     let results_path = from.join("results.json");
-    let results: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string(&results_path).with_context(|| format!("{}: run `impact verify --out DIR` first", results_path.display()))?,
-    )
-    .with_context(|| format!("{}", results_path.display()))?;
+    let results: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&results_path).with_context(|| {
+            format!(
+                "{}: run `impact verify --out DIR` first",
+                results_path.display()
+            )
+        })?)
+        .with_context(|| format!("{}", results_path.display()))?;
     let env: serde_json::Value = std::fs::read_to_string(from.join("environment.json"))
         .ok()
         .and_then(|t| serde_json::from_str(&t).ok())
@@ -305,10 +410,22 @@ pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyho
         let checks: Vec<serde_json::Value> = c["checks"].as_array().cloned().unwrap_or_default();
         let count = |s: &str| checks.iter().filter(|k| k["status"] == s).count();
         let (ok, fail, skip) = (count("OK"), count("FAIL"), count("SKIP"));
-        let status = if fail > 0 { "FAIL" } else if ok == 0 { "SKIP" } else { "OK" };
+        let status = if fail > 0 {
+            "FAIL"
+        } else if ok == 0 {
+            "SKIP"
+        } else {
+            "OK"
+        };
         let mut refs: Vec<String> = checks
             .iter()
-            .map(|k| format!("{}: {}", k["reference_kind"].as_str().unwrap_or(""), k["reference_source"].as_str().unwrap_or("")))
+            .map(|k| {
+                format!(
+                    "{}: {}",
+                    k["reference_kind"].as_str().unwrap_or(""),
+                    k["reference_source"].as_str().unwrap_or("")
+                )
+            })
             .collect();
         refs.sort();
         refs.dedup();
@@ -318,7 +435,12 @@ pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyho
                 modelling.push(serde_json::json!({"scene": scene, "key": k, "value": v}));
             }
         }
-        let job_errors: Vec<String> = c["job_errors"].as_object().into_iter().flatten().map(|(k, v)| format!("{k}: {}", v.as_str().unwrap_or(""))).collect();
+        let job_errors: Vec<String> = c["job_errors"]
+            .as_object()
+            .into_iter()
+            .flatten()
+            .map(|(k, v)| format!("{k}: {}", v.as_str().unwrap_or("")))
+            .collect();
         let rows: Vec<serde_json::Value> = checks
             .iter()
             .map(|k| {
@@ -345,7 +467,11 @@ pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyho
         let suite = c["suite"].as_str().unwrap_or("");
         for (i, (title, svg)) in plots.iter().enumerate() {
             if svg.starts_with("<svg") || svg.starts_with("<?xml") {
-                let name = format!("plots/{}-{}-{i}.svg", slug(suite), slug(c["case"].as_str().unwrap_or("")));
+                let name = format!(
+                    "plots/{}-{}-{i}.svg",
+                    slug(suite),
+                    slug(c["case"].as_str().unwrap_or(""))
+                );
                 std::fs::write(out.join(&name), svg)?;
                 plot_files.push(name);
             }
@@ -372,12 +498,16 @@ pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyho
         "jobs": env["jobs"].as_u64().unwrap_or(0),
         "wall": format!("{:.1}", env["wall_time_s"].as_f64().unwrap_or(0.0)),
     });
-    let recon_path = opts.reconstruction.clone().unwrap_or_else(|| repo.root.join(RECONSTRUCTION_PAGE));
-    let recon = reconstruction_context(&recon_path, &repo.root, out);
-    let bench_dir = opts
-        .benchmarks
+    let recon_path = opts
+        .reconstruction
         .clone()
-        .or_else(|| [from.join("benchmarks"), out.join("benchmarks")].into_iter().find(|d| d.is_dir()));
+        .unwrap_or_else(|| repo.root.join(RECONSTRUCTION_PAGE));
+    let recon = reconstruction_context(&recon_path, &repo.root, out);
+    let bench_dir = opts.benchmarks.clone().or_else(|| {
+        [from.join("benchmarks"), out.join("benchmarks")]
+            .into_iter()
+            .find(|d| d.is_dir())
+    });
     let bench = crate::bench_report::context(bench_dir.as_deref(), out);
     let ctx = serde_json::json!({
         "recon": recon,
@@ -394,11 +524,15 @@ pub fn write_report_with(from: &Path, out: &Path, opts: &ReportOptions) -> anyho
     let mut jinja = minijinja::Environment::new();
     jinja.add_template("html", HTML_TEMPLATE)?;
     jinja.add_template("md", MD_TEMPLATE)?;
-    let html = jinja.get_template("html")?.render(minijinja::Value::from_serialize(&ctx))?;
+    let html = jinja
+        .get_template("html")?
+        .render(minijinja::Value::from_serialize(&ctx))?;
     let mut md_env = minijinja::Environment::new();
     md_env.set_auto_escape_callback(|_| minijinja::AutoEscape::None);
     md_env.add_template("md", MD_TEMPLATE)?;
-    let md = md_env.get_template("md")?.render(minijinja::Value::from_serialize(&ctx))?;
+    let md = md_env
+        .get_template("md")?
+        .render(minijinja::Value::from_serialize(&ctx))?;
     let _ = jinja;
     std::fs::write(out.join("index.html"), html)?;
     std::fs::write(out.join("report.md"), md)?;
@@ -419,19 +553,56 @@ fn short(x: Option<f64>) -> String {
 }
 
 /// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
-fn paper_tables(results: &serde_json::Value, root: &Path) -> (Vec<serde_json::Value>, Vec<serde_json::Value>) {
-    let find = |suite: &str| results["cases"].as_array().into_iter().flatten().find(|c| c["suite"] == suite).cloned();
-    let metric = |c: &Option<serde_json::Value>, scene: &str, key: &str| c.as_ref().and_then(|c| c["metrics"][scene][key].as_f64());
+fn paper_tables(
+    results: &serde_json::Value,
+    root: &Path,
+) -> (Vec<serde_json::Value>, Vec<serde_json::Value>) {
+    let find = |suite: &str| {
+        results["cases"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|c| c["suite"] == suite)
+            .cloned()
+    };
+    let metric = |c: &Option<serde_json::Value>, scene: &str, key: &str| {
+        c.as_ref().and_then(|c| c["metrics"][scene][key].as_f64())
+    };
     let t1 = find("table1");
     let path1 = root.join("reference-data/paper/table1.csv");
     let mut table1 = Vec::new();
     let rows1 = [
         ("impulse", "Impulse (N s)", "impulse_Ns", 1.0),
-        ("max_contact_load", "Max. contact load (kN)", "peak_contact_force_N", 1e-3),
-        ("max_plate_displacement", "Max. displacement (mm)", "max_plate_displacement_m", 1e3),
-        ("contact_duration", "Contact duration (ms)", "contact_duration_s", 1e3),
-        ("impactor_final_velocity", "Final impactor velocity (m/s)", "final_impactor_velocity_mps", 1.0),
-        ("max_effective_stress_point_a", "Max. von Mises at A (MPa)", "max_von_mises_Pa.A", 1e-6),
+        (
+            "max_contact_load",
+            "Max. contact load (kN)",
+            "peak_contact_force_N",
+            1e-3,
+        ),
+        (
+            "max_plate_displacement",
+            "Max. displacement (mm)",
+            "max_plate_displacement_m",
+            1e3,
+        ),
+        (
+            "contact_duration",
+            "Contact duration (ms)",
+            "contact_duration_s",
+            1e3,
+        ),
+        (
+            "impactor_final_velocity",
+            "Final impactor velocity (m/s)",
+            "final_impactor_velocity_mps",
+            1.0,
+        ),
+        (
+            "max_effective_stress_point_a",
+            "Max. von Mises at A (MPa)",
+            "max_von_mises_Pa.A",
+            1e-6,
+        ),
     ];
     for (q, label, key, scale) in rows1 {
         let mut sel = std::collections::BTreeMap::new();

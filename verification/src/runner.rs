@@ -27,7 +27,9 @@ impl Repo {
         let mut dir = Some(start);
         while let Some(d) = dir {
             if d.join("verification").join("cases").is_dir() {
-                return Some(Repo { root: d.to_path_buf() });
+                return Some(Repo {
+                    root: d.to_path_buf(),
+                });
             }
             dir = d.parent();
         }
@@ -109,7 +111,9 @@ pub struct Outcome {
 
 impl Matrix {
     pub fn all_checks(&self) -> impl Iterator<Item = (&CaseResult, &CheckResult)> {
-        self.cases.iter().flat_map(|c| c.checks.iter().map(move |k| (c, k)))
+        self.cases
+            .iter()
+            .flat_map(|c| c.checks.iter().map(move |k| (c, k)))
     }
 }
 
@@ -137,20 +141,32 @@ fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
 pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
     let (cases, errors) = crate::case::load_cases(&repo.cases_dir());
     let mut problems: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
-    problems.extend(crate::lint::lint(repo, &cases).into_iter().map(|f| f.to_string()));
+    problems.extend(
+        crate::lint::lint(repo, &cases)
+            .into_iter()
+            .map(|f| f.to_string()),
+    );
     if !problems.is_empty() {
         return Err(problems);
     }
     let chosen: Vec<&Case> = cases
         .iter()
         .filter(|c| selected(c, opts))
-        .filter(|c| c.file.checks.iter().any(|k| check_matches(c, &k.value.id, &opts.filter)))
+        .filter(|c| {
+            c.file
+                .checks
+                .iter()
+                .any(|k| check_matches(c, &k.value.id, &opts.filter))
+        })
         .collect();
     if chosen.is_empty() {
         return Err(vec![format!(
             "no case matches {:?}{}",
             opts.selectors,
-            opts.filter.as_ref().map(|f| format!(" with filter {f:?}")).unwrap_or_default()
+            opts.filter
+                .as_ref()
+                .map(|f| format!(" with filter {f:?}"))
+                .unwrap_or_default()
         )]);
     }
 
@@ -183,7 +199,12 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
 
     // Largest first; results land in their own slot, whatever the thread.
     let mut order: Vec<usize> = (0..unique.len()).collect();
-    order.sort_by(|&a, &b| unique[b].cost().total_cmp(&unique[a].cost()).then(a.cmp(&b)));
+    order.sort_by(|&a, &b| {
+        unique[b]
+            .cost()
+            .total_cmp(&unique[a].cost())
+            .then(a.cmp(&b))
+    });
     let bar = if opts.progress {
         let b = ProgressBar::new(unique.len() as u64);
         b.set_style(
@@ -230,13 +251,20 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         for (name, idx) in jobs_of {
             match idx {
                 Ok(i) => {
-                    results.insert(name, slots[i].clone().unwrap_or_else(|| Err("not run".into())));
+                    results.insert(
+                        name,
+                        slots[i].clone().unwrap_or_else(|| Err("not run".into())),
+                    );
                 }
                 Err(e) => setup_error = Some(e),
             }
         }
-        let series: BTreeMap<String, crate::case::SeriesSpec> =
-            case.file.series.iter().map(|(k, v)| (k.clone(), v.value.clone())).collect();
+        let series: BTreeMap<String, crate::case::SeriesSpec> = case
+            .file
+            .series
+            .iter()
+            .map(|(k, v)| (k.clone(), v.value.clone()))
+            .collect();
         let default_scene = if case.file.scenes.len() == 1 {
             case.file.scenes.keys().next().map(|s| s.as_str())
         } else {
@@ -256,8 +284,14 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
             if !check_matches(case, &k.id, &opts.filter) {
                 continue;
             }
-            for q in [&k.measure.value.order, &k.measure.value.gci].into_iter().flatten() {
-                series_metrics.entry(q.series.clone()).or_default().insert(q.metric.clone());
+            for q in [&k.measure.value.order, &k.measure.value.gci]
+                .into_iter()
+                .flatten()
+            {
+                series_metrics
+                    .entry(q.series.clone())
+                    .or_default()
+                    .insert(q.metric.clone());
             }
             let mut r = check::evaluate(k, &ctx);
             if let Some(skip) = case_skip {
@@ -278,7 +312,9 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         }
         let mut series_data = BTreeMap::new();
         for (name, metrics) in series_metrics {
-            let Some(spec) = series.get(&name) else { continue };
+            let Some(spec) = series.get(&name) else {
+                continue;
+            };
             let mut m = BTreeMap::new();
             for metric in metrics {
                 if let Ok((_, values, _)) = check::series_values(&name, &metric, &ctx) {
@@ -340,7 +376,13 @@ pub fn num(x: Option<f64>) -> String {
     match x {
         None => "-".into(),
         Some(v) if v == 0.0 => "0".into(),
-        Some(v) if v.is_infinite() => if v > 0.0 { "inf".into() } else { "-inf".into() },
+        Some(v) if v.is_infinite() => {
+            if v > 0.0 {
+                "inf".into()
+            } else {
+                "-inf".into()
+            }
+        }
         Some(v) => format!("{v:.6e}"),
     }
 }
@@ -359,7 +401,15 @@ pub fn matrix_text(m: &Matrix) -> String {
     ]];
     for (c, k) in m.all_checks() {
         let error = match k.error {
-            Some(e) => format!("{}{}", num(Some(e)), if k.error_kind == "relative" { " rel" } else { "" }),
+            Some(e) => format!(
+                "{}{}",
+                num(Some(e)),
+                if k.error_kind == "relative" {
+                    " rel"
+                } else {
+                    ""
+                }
+            ),
             None => "-".into(),
         };
         let cmp = match k.compare {
@@ -391,7 +441,11 @@ pub fn matrix_text(m: &Matrix) -> String {
     }
     let mut out = String::new();
     for r in &rows {
-        let line: Vec<String> = r.iter().zip(widths).map(|(s, w)| format!("{s:<w$}")).collect();
+        let line: Vec<String> = r
+            .iter()
+            .zip(widths)
+            .map(|(s, w)| format!("{s:<w$}"))
+            .collect();
         out.push_str(line.join("  ").trim_end());
         out.push('\n');
     }
@@ -411,7 +465,10 @@ pub fn summary_text(m: &Matrix) -> String {
     }
     let mut out = String::from("\nsuite                 OK  FAIL  SKIP\n");
     for (s, c) in &per {
-        out.push_str(&format!("{s:<20} {:>4} {:>5} {:>5}\n", c.ok, c.fail, c.skip));
+        out.push_str(&format!(
+            "{s:<20} {:>4} {:>5} {:>5}\n",
+            c.ok, c.fail, c.skip
+        ));
     }
     out.push_str(&format!(
         "{:<20} {:>4} {:>5} {:>5}\n",
@@ -421,8 +478,19 @@ pub fn summary_text(m: &Matrix) -> String {
         .all_checks()
         .filter(|(_, k)| k.status != Status::Ok)
         .map(|(c, k)| {
-            let known = k.known_failure.as_ref().map(|r| format!(" [known: {r}]")).unwrap_or_default();
-            format!("  {} {}/{}/{}: {}{known}", k.status.name(), c.suite, c.case, k.id, k.message)
+            let known = k
+                .known_failure
+                .as_ref()
+                .map(|r| format!(" [known: {r}]"))
+                .unwrap_or_default();
+            format!(
+                "  {} {}/{}/{}: {}{known}",
+                k.status.name(),
+                c.suite,
+                c.case,
+                k.id,
+                k.message
+            )
         })
         .collect();
     if !notes.is_empty() {
@@ -496,8 +564,13 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
             let dir = runs.join(suite).join(case).join(scene);
             std::fs::create_dir_all(&dir)?;
             for (name, h) in &d.histories {
-                let file = if name.is_empty() { "history.csv".to_string() } else { format!("{name}.csv") };
-                impact_solver::output::write_history(h, &dir.join(file)).map_err(std::io::Error::other)?;
+                let file = if name.is_empty() {
+                    "history.csv".to_string()
+                } else {
+                    format!("{name}.csv")
+                };
+                impact_solver::output::write_history(h, &dir.join(file))
+                    .map_err(std::io::Error::other)?;
             }
             if let Some(s) = &d.summary {
                 let text = serde_json::to_string_pretty(s).map_err(std::io::Error::other)?;

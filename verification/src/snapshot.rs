@@ -38,10 +38,18 @@ fn floored(x: f64, floor: f64, digits: usize) -> String {
 }
 
 /// The snapshot text of one case.
-pub fn case_text(case: &CaseResult, spec: Option<&crate::case::SnapshotSpec>, data: &BTreeMap<String, JobResult>) -> String {
+pub fn case_text(
+    case: &CaseResult,
+    spec: Option<&crate::case::SnapshotSpec>,
+    data: &BTreeMap<String, JobResult>,
+) -> String {
     let digits = spec.and_then(|s| s.digits).unwrap_or(6);
     let mut out = String::new();
-    let _ = writeln!(out, "case {} ({}/{}), {} significant digits", case.id, case.suite, case.case, digits);
+    let _ = writeln!(
+        out,
+        "case {} ({}/{}), {} significant digits",
+        case.id, case.suite, case.case, digits
+    );
     let _ = writeln!(out, "checks:");
     for k in &case.checks {
         let _ = writeln!(
@@ -49,8 +57,10 @@ pub fn case_text(case: &CaseResult, spec: Option<&crate::case::SnapshotSpec>, da
             "  {:<5} {} computed {} reference {}",
             k.status.name(),
             k.id,
-            k.computed.map_or("-".into(), |v| floored(v, METRIC_FLOOR, digits)),
-            k.reference.map_or("-".into(), |v| floored(v, METRIC_FLOOR, digits)),
+            k.computed
+                .map_or("-".into(), |v| floored(v, METRIC_FLOOR, digits)),
+            k.reference
+                .map_or("-".into(), |v| floored(v, METRIC_FLOOR, digits)),
         );
     }
     let Some(spec) = spec else { return out };
@@ -72,7 +82,9 @@ pub fn case_text(case: &CaseResult, spec: Option<&crate::case::SnapshotSpec>, da
             let _ = writeln!(out, "    {k}: {}", floored(*v, METRIC_FLOOR, digits));
         }
         let Some(h) = d.history() else { continue };
-        let Some(t) = h.column("time_s") else { continue };
+        let Some(t) = h.column("time_s") else {
+            continue;
+        };
         let cols: Vec<(&String, Vec<f64>)> = spec
             .columns
             .iter()
@@ -82,7 +94,11 @@ pub fn case_text(case: &CaseResult, spec: Option<&crate::case::SnapshotSpec>, da
             continue;
         }
         let names: Vec<&str> = cols.iter().map(|c| c.0.as_str()).collect();
-        let _ = writeln!(out, "  history at fixed times (time_s, {}):", names.join(", "));
+        let _ = writeln!(
+            out,
+            "  history at fixed times (time_s, {}):",
+            names.join(", ")
+        );
         let last = t.last().copied().unwrap_or(0.0);
         for &time in &spec.times {
             if time > last * (1.0 + 1e-12) {
@@ -91,7 +107,11 @@ pub fn case_text(case: &CaseResult, spec: Option<&crate::case::SnapshotSpec>, da
             let mut row = vec![sig(time, digits)];
             for (_, v) in &cols {
                 let peak = v.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-                row.push(floored(interpolate(&t, v, time), HISTORY_FLOOR * peak, digits));
+                row.push(floored(
+                    interpolate(&t, v, time),
+                    HISTORY_FLOOR * peak,
+                    digits,
+                ));
             }
             let _ = writeln!(out, "    {}", row.join("  "));
         }

@@ -13,12 +13,25 @@ fn the_repository_cases_are_lint_clean() {
     let repo = Repo::this();
     let (cases, errors) = load_cases(&repo.cases_dir());
     assert!(errors.is_empty(), "unreadable cases: {errors:#?}");
-    assert!(cases.len() >= 8, "expected the eight suites, found {} cases", cases.len());
+    assert!(
+        cases.len() >= 8,
+        "expected the eight suites, found {} cases",
+        cases.len()
+    );
     let findings = lint(&repo, &cases);
     let text: Vec<String> = findings.iter().map(|f| f.to_string()).collect();
     assert!(findings.is_empty(), "lint findings:\n{}", text.join("\n"));
     let suites: std::collections::BTreeSet<&str> = cases.iter().map(|c| c.suite.as_str()).collect();
-    for s in ["patch", "wave-speed", "pulse-86.5kN", "hertz", "momentum-impulse", "table1", "energy", "convergence"] {
+    for s in [
+        "patch",
+        "wave-speed",
+        "pulse-86.5kN",
+        "hertz",
+        "momentum-impulse",
+        "table1",
+        "energy",
+        "convergence",
+    ] {
         assert!(suites.contains(s), "suite {s} missing");
     }
 }
@@ -83,32 +96,68 @@ fn a_good_case_is_clean() {
 #[test]
 fn a_check_without_reference_kind_is_refused() {
     let f = findings(&GOOD.replace("kind: analytical, ", ""), true);
-    assert!(f.iter().any(|m| m.contains("check k1: the reference has no kind") && m.contains("case.yaml:")), "{f:?}");
+    assert!(
+        f.iter()
+            .any(|m| m.contains("check k1: the reference has no kind") && m.contains("case.yaml:")),
+        "{f:?}"
+    );
 }
 
 #[test]
 fn a_tolerance_without_reason_is_refused() {
     let f = findings(&GOOD.replace(", reason: \"round-off\"", ""), true);
-    assert!(f.iter().any(|m| m.contains("check k1: the tolerance has no reason")), "{f:?}");
-    let f = findings(&GOOD.replace("reason: \"round-off\"", "reason: \"  \""), true);
-    assert!(f.iter().any(|m| m.contains("check k1: the tolerance has no reason")), "{f:?}");
+    assert!(
+        f.iter()
+            .any(|m| m.contains("check k1: the tolerance has no reason")),
+        "{f:?}"
+    );
+    let f = findings(
+        &GOOD.replace("reason: \"round-off\"", "reason: \"  \""),
+        true,
+    );
+    assert!(
+        f.iter()
+            .any(|m| m.contains("check k1: the tolerance has no reason")),
+        "{f:?}"
+    );
 }
 
 #[test]
 fn a_skip_without_reason_is_refused() {
-    let yaml = GOOD.replace("    title: a check\n", "    title: a check\n    skip: true\n");
+    let yaml = GOOD.replace(
+        "    title: a check\n",
+        "    title: a check\n    skip: true\n",
+    );
     let f = findings(&yaml, true);
-    assert!(f.iter().any(|m| m.contains("check k1: a skip needs a reason")), "{f:?}");
-    let yaml = GOOD.replace("category: code verification\n", "category: code verification\nskip: \"\"\n");
+    assert!(
+        f.iter()
+            .any(|m| m.contains("check k1: a skip needs a reason")),
+        "{f:?}"
+    );
+    let yaml = GOOD.replace(
+        "category: code verification\n",
+        "category: code verification\nskip: \"\"\n",
+    );
     let f = findings(&yaml, true);
-    assert!(f.iter().any(|m| m.contains("a skip needs a reason")), "{f:?}");
+    assert!(
+        f.iter().any(|m| m.contains("a skip needs a reason")),
+        "{f:?}"
+    );
 }
 
 #[test]
 fn a_reference_file_without_provenance_is_refused() {
     let f = findings(GOOD, false);
-    assert!(f.iter().any(|m| m.contains("check k2: reference file") && m.contains("no provenance")), "{f:?}");
-    assert!(f.iter().any(|m| m.contains("table.csv: reference file without provenance")), "{f:?}");
+    assert!(
+        f.iter()
+            .any(|m| m.contains("check k2: reference file") && m.contains("no provenance")),
+        "{f:?}"
+    );
+    assert!(
+        f.iter()
+            .any(|m| m.contains("table.csv: reference file without provenance")),
+        "{f:?}"
+    );
 }
 
 #[test]
@@ -121,12 +170,22 @@ fn duplicate_requirement_ids_are_refused() {
     let (cases, _) = load_cases(&repo.cases_dir());
     let f: Vec<String> = lint(&repo, &cases).iter().map(|f| f.to_string()).collect();
     let _ = std::fs::remove_dir_all(root);
-    assert!(f.iter().any(|m| m.contains("duplicate requirement id \"REQ-1\"")), "{f:?}");
+    assert!(
+        f.iter()
+            .any(|m| m.contains("duplicate requirement id \"REQ-1\"")),
+        "{f:?}"
+    );
 }
 
 #[test]
 fn unknown_scenes_and_missing_reference_files_are_refused() {
-    let f = findings(&GOOD.replace("measure: {metric: round_trip_max_rel}\n    reference: {kind: analytical", "measure: {scene: nope, metric: x}\n    reference: {kind: analytical"), true);
+    let f = findings(
+        &GOOD.replace(
+            "measure: {metric: round_trip_max_rel}\n    reference: {kind: analytical",
+            "measure: {scene: nope, metric: x}\n    reference: {kind: analytical",
+        ),
+        true,
+    );
     assert!(f.iter().any(|m| m.contains("no scene \"nope\"")), "{f:?}");
     let f = findings(&GOOD.replace("thing/table.csv", "thing/missing.csv"), true);
     assert!(f.iter().any(|m| m.contains("does not exist")), "{f:?}");
@@ -142,12 +201,18 @@ fn parse_error(yaml: &str) -> String {
 #[test]
 fn malformed_case_files_give_file_line_column() {
     // Unknown key on line 6 (GOOD starts with an empty line).
-    let e = parse_error(&GOOD.replace("category: code verification\n", "category: code verification\ncolour: red\n"));
+    let e = parse_error(&GOOD.replace(
+        "category: code verification\n",
+        "category: code verification\ncolour: red\n",
+    ));
     assert!(e.starts_with("cases/x/case.yaml:6:"), "{e}");
     assert!(e.contains("colour"), "{e}");
     // Wrong type: a tolerance that is not a number.
     let e = parse_error(&GOOD.replace("absolute: 1.0e-12", "absolute: tiny"));
-    assert!(e.starts_with("cases/x/case.yaml:13:27: invalid floating point"), "{e}");
+    assert!(
+        e.starts_with("cases/x/case.yaml:13:27: invalid floating point"),
+        "{e}"
+    );
     // Unknown category.
     let e = parse_error(&GOOD.replace("code verification", "vibes"));
     assert!(e.starts_with("cases/x/case.yaml:5:"), "{e}");

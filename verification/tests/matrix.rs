@@ -29,7 +29,8 @@ fn options(selectors: &[&str], jobs: usize) -> Options {
 #[test]
 fn light_matrix_known_failures_only_outputs_and_snapshots() {
     let repo = Repo::this();
-    let outcome = runner::verify(&repo, &options(&[], 2)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
+    let outcome =
+        runner::verify(&repo, &options(&[], 2)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
     let m = &outcome.matrix;
     assert!(m.counts.ok > 100, "{:?}", m.counts);
 
@@ -38,34 +39,67 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     for (c, k) in m.all_checks() {
         let name = format!("{}/{}/{}", c.suite, c.case, k.id);
         match (k.status, &k.known_failure) {
-            (Status::Fail, None) => unexpected.push(format!("{name}: {} (computed {:?}, reference {:?})", k.message, k.computed, k.reference)),
-            (Status::Ok, Some(why)) => fixed.push(format!("{name} passes now: remove known_failure ({why})")),
-            (Status::Skip, _) => assert!(!k.message.trim().is_empty(), "{name}: skip without reason"),
+            (Status::Fail, None) => unexpected.push(format!(
+                "{name}: {} (computed {:?}, reference {:?})",
+                k.message, k.computed, k.reference
+            )),
+            (Status::Ok, Some(why)) => {
+                fixed.push(format!("{name} passes now: remove known_failure ({why})"))
+            }
+            (Status::Skip, _) => {
+                assert!(!k.message.trim().is_empty(), "{name}: skip without reason")
+            }
             _ => {}
         }
     }
-    assert!(unexpected.is_empty(), "failing checks:\n{}", unexpected.join("\n"));
+    assert!(
+        unexpected.is_empty(),
+        "failing checks:\n{}",
+        unexpected.join("\n")
+    );
     assert!(fixed.is_empty(), "{}", fixed.join("\n"));
 
     // results.json and JUnit round-trip.
     let out = std::env::temp_dir().join(format!("impact-verify-test-{}", std::process::id()));
     runner::write_outputs(&outcome, &out).unwrap();
-    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
-    let n_checks: usize = json["cases"].as_array().unwrap().iter().map(|c| c["checks"].as_array().unwrap().len()).sum();
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let n_checks: usize = json["cases"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["checks"].as_array().unwrap().len())
+        .sum();
     assert_eq!(n_checks, m.counts.ok + m.counts.fail + m.counts.skip);
     let junit = std::fs::read_to_string(out.join("junit.xml")).unwrap();
-    assert_eq!(junit.matches("<testcase ").count(), n_checks, "one JUnit test case per check");
+    assert_eq!(
+        junit.matches("<testcase ").count(),
+        n_checks,
+        "one JUnit test case per check"
+    );
     assert_eq!(junit.matches("<failure").count(), m.counts.fail);
     assert_eq!(junit.matches("<skipped").count(), m.counts.skip);
     assert!(!junit.contains("wall_time"));
     // The report: self-contained HTML with inline SVG plots, and markdown.
     impact_verification::report::write_report(&out, &out).unwrap();
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    assert!(html.contains("Requirements traceability matrix") && html.contains("Table 1 (m = 18 kg"));
-    assert!(html.matches("<svg").count() >= 10, "inline SVG plots expected");
+    assert!(
+        html.contains("Requirements traceability matrix") && html.contains("Table 1 (m = 18 kg")
+    );
+    assert!(
+        html.matches("<svg").count() >= 10,
+        "inline SVG plots expected"
+    );
     let offline = html.replace("http://www.w3.org/2000/svg", ""); // the SVG namespace, not a fetch
-    assert!(!offline.contains("<script") && !offline.contains("http://") && !offline.contains("https://"), "the report must open offline");
-    assert!(std::fs::read_to_string(out.join("report.md")).unwrap().contains("| REQ-LIT-TABLE1 |"));
+    assert!(
+        !offline.contains("<script")
+            && !offline.contains("http://")
+            && !offline.contains("https://"),
+        "the report must open offline"
+    );
+    assert!(std::fs::read_to_string(out.join("report.md"))
+        .unwrap()
+        .contains("| REQ-LIT-TABLE1 |"));
     // No benchmarks folder next to the results: the performance section says how to make one.
     assert!(html.contains("<b>No benchmark results:</b>"));
     // With the fixtures of tests/support (not the real folders): the reconstruction page
@@ -73,12 +107,21 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     let fixtures = out.join("fixtures");
     support::write_benchmarks(&fixtures.join("bench"));
     let page = support::write_reconstruction(&fixtures.join("recon"));
-    let opts = ReportOptions { benchmarks: Some(fixtures.join("bench")), reconstruction: Some(page) };
+    let opts = ReportOptions {
+        benchmarks: Some(fixtures.join("bench")),
+        reconstruction: Some(page),
+    };
     write_report_with(&out, &out, &opts).unwrap();
     support::assert_sections_present(&out);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
-    assert!(html.contains("Requirements traceability matrix") && html.matches("<svg").count() >= 10, "the matrix is still all there");
-    let opts = ReportOptions { benchmarks: Some(fixtures.join("none")), reconstruction: Some(fixtures.join("none.md")) };
+    assert!(
+        html.contains("Requirements traceability matrix") && html.matches("<svg").count() >= 10,
+        "the matrix is still all there"
+    );
+    let opts = ReportOptions {
+        benchmarks: Some(fixtures.join("none")),
+        reconstruction: Some(fixtures.join("none.md")),
+    };
     write_report_with(&out, &out, &opts).unwrap();
     support::assert_sections_missing(&out, Some(&fixtures.join("none")));
     let _ = std::fs::remove_dir_all(&out);
@@ -103,8 +146,10 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
 fn results_do_not_depend_on_the_thread_count() {
     let repo = Repo::this();
     let sel = ["hertz", "patch", "energy"];
-    let one = runner::verify(&repo, &options(&sel, 1)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
-    let two = runner::verify(&repo, &options(&sel, 2)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
+    let one =
+        runner::verify(&repo, &options(&sel, 1)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
+    let two =
+        runner::verify(&repo, &options(&sel, 2)).unwrap_or_else(|e| panic!("{}", e.join("\n")));
     let a = serde_json::to_string(&one.matrix).unwrap();
     let b = serde_json::to_string(&two.matrix).unwrap();
     assert!(a == b, "results differ between 1 and 2 threads");

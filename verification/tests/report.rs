@@ -16,7 +16,10 @@ fn report_embeds_the_reconstruction_page_and_the_benchmarks() {
     write_benchmarks(&dir.join("bench"));
     let page = write_reconstruction(&dir.join("recon"));
     let out = dir.join("report");
-    let opts = ReportOptions { benchmarks: Some(dir.join("bench")), reconstruction: Some(page) };
+    let opts = ReportOptions {
+        benchmarks: Some(dir.join("bench")),
+        reconstruction: Some(page),
+    };
     write_report_with(&from, &out, &opts).unwrap();
     assert_sections_present(&out);
     let _ = std::fs::remove_dir_all(&dir);
@@ -29,11 +32,17 @@ fn report_says_how_to_produce_what_is_missing() {
     write_empty_results(&from);
     // Given, but not there.
     let bench = dir.join("no-such-benchmarks");
-    let opts = ReportOptions { benchmarks: Some(bench.clone()), reconstruction: Some(dir.join("recon").join("report.md")) };
+    let opts = ReportOptions {
+        benchmarks: Some(bench.clone()),
+        reconstruction: Some(dir.join("recon").join("report.md")),
+    };
     write_report_with(&from, &from, &opts).unwrap();
     assert_sections_missing(&from, Some(&bench));
     // Not given, and no <from>/benchmarks: the default finds nothing.
-    let opts = ReportOptions { benchmarks: None, reconstruction: Some(dir.join("recon").join("report.md")) };
+    let opts = ReportOptions {
+        benchmarks: None,
+        reconstruction: Some(dir.join("recon").join("report.md")),
+    };
     write_report_with(&from, &from, &opts).unwrap();
     assert_sections_missing(&from, None);
     let _ = std::fs::remove_dir_all(&dir);
@@ -46,7 +55,10 @@ fn report_finds_benchmarks_next_to_the_verify_results() {
     write_empty_results(&from);
     write_benchmarks(&from.join("benchmarks"));
     let page = write_reconstruction(&dir.join("recon"));
-    let opts = ReportOptions { benchmarks: None, reconstruction: Some(page) };
+    let opts = ReportOptions {
+        benchmarks: None,
+        reconstruction: Some(page),
+    };
     write_report_with(&from, &from, &opts).unwrap();
     assert_sections_present(&from);
     let _ = std::fs::remove_dir_all(&dir);
@@ -62,7 +74,10 @@ fn report_names_the_benchmark_files_that_are_missing() {
     for f in ["work-precision.csv", "throughput-runs.csv", "stability.md"] {
         std::fs::remove_file(bench.join(f)).unwrap();
     }
-    let opts = ReportOptions { benchmarks: Some(bench), reconstruction: Some(dir.join("none.md")) };
+    let opts = ReportOptions {
+        benchmarks: Some(bench),
+        reconstruction: Some(dir.join("none.md")),
+    };
     write_report_with(&from, &from, &opts).unwrap();
     let md = std::fs::read_to_string(from.join("report.md")).unwrap();
     let html = std::fs::read_to_string(from.join("index.html")).unwrap();
