@@ -195,6 +195,21 @@ impl History {
         )
     }
 
+    /// Trapezoidal integral over time of `f(value)` of a column, over the rows up to `until`
+    /// (s) (e.g. the momentum deficit of a wave front). `None` without that column.
+    pub fn time_integral(&self, column: &str, until: f64, f: impl Fn(f64) -> f64) -> Option<f64> {
+        let t = self.column("time_s")?;
+        let v = self.column(column)?;
+        let mut integral = 0.0;
+        for k in 1..t.len() {
+            if t[k] > until {
+                break;
+            }
+            integral += 0.5 * (f(v[k - 1]) + f(v[k])) * (t[k] - t[k - 1]);
+        }
+        Some(integral)
+    }
+
     pub fn row(&self, r: usize) -> &[f64] {
         let n = self.columns.len();
         &self.values[r * n..(r + 1) * n]

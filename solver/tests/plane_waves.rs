@@ -35,20 +35,14 @@ fn scene(ends: &str, traction: &str) -> Scene {
 /// Wave speed from the momentum deficit of the probe stress column (normalised to +1).
 fn measured_speed(scene: &Scene, column: &str, sign: f64, exact: f64) -> f64 {
     let o = simulate(scene, &mut Quiet).unwrap();
-    let t = o.history.column("time_s").unwrap();
-    let s = o.history.column(column).unwrap();
     // The probe (y = 0.01 m) lies in the element row just below mid-depth.
     let dy = H / NY as f64;
     let depth = H - (0.01 - 0.5 * dy);
     let until = 0.97 * (2.0 * H - depth) / exact;
-    let mut deficit = 0.0;
-    for k in 1..t.len() {
-        if t[k] > until {
-            break;
-        }
-        let (a, b) = (1.0 - sign * s[k - 1] / 1e6, 1.0 - sign * s[k] / 1e6);
-        deficit += 0.5 * (a + b) * (t[k] - t[k - 1]);
-    }
+    let deficit = o
+        .history
+        .time_integral(column, until, |s| 1.0 - sign * s / 1e6)
+        .unwrap();
     depth / deficit
 }
 

@@ -772,24 +772,15 @@ fn plane_wave(p: &Params) -> Result<RunData, String> {
             .map_err(|e| e.to_string())?;
     let o =
         impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
-    let t = o.history.column("time_s").ok_or("no time")?;
-    let s = o
-        .history
-        .column(column)
-        .ok_or_else(|| format!("no column {column}"))?;
     // The probe (y = h/2) lies in the element row just below mid-depth; the stress of that
     // row is the force between its node rows, so the depth is its centre's.
     let dy = h / ny as f64;
     let depth = h - (0.5 * h - 0.5 * dy);
     let until = 0.97 * (2.0 * h - depth) / exact;
-    let mut deficit = 0.0;
-    for k in 1..t.len() {
-        if t[k] > until {
-            break;
-        }
-        let (a, b) = (1.0 - sign * s[k - 1] / 1e6, 1.0 - sign * s[k] / 1e6);
-        deficit += 0.5 * (a + b) * (t[k] - t[k - 1]);
-    }
+    let deficit = o
+        .history
+        .time_integral(column, until, |s| 1.0 - sign * s / 1e6)
+        .ok_or_else(|| format!("no column {column}"))?;
     let c = depth / deficit;
     let mut m = BTreeMap::new();
     m.insert("speed_mps".into(), c);
