@@ -280,12 +280,47 @@ pub struct MeasureFile {
     /// Grid convergence index of the finest level (Roache, Fs = 1.25), relative.
     #[serde(default)]
     pub gci: Option<SeriesQuantity>,
+    /// Relative change from the first to the last level of a series,
+    /// `|f_first - f_last| / |f_last|`: how much the whole refinement moves a quantity.
+    #[serde(default)]
+    pub change: Option<SeriesQuantity>,
     /// Scale applied to the measured value (unit conversion).
     #[serde(default)]
     pub scale: Option<f64>,
     /// Take the absolute value.
     #[serde(default)]
     pub abs: bool,
+}
+
+/// The message for a measure that does not name exactly one selector.
+pub const ONE_SELECTOR: &str =
+    "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci, change";
+
+impl MeasureFile {
+    /// How many of the value selectors (metric, at, extreme, ...) are given; exactly one is valid.
+    pub fn selector_count(&self) -> usize {
+        [
+            self.metric.is_some(),
+            self.at.is_some(),
+            self.extreme.is_some(),
+            self.error.is_some(),
+            self.ratio.is_some(),
+            self.order.is_some(),
+            self.gci.is_some(),
+            self.change.is_some(),
+        ]
+        .iter()
+        .filter(|&&b| b)
+        .count()
+    }
+
+    /// The series quantity of an `order`, `gci` or `change` measure.
+    pub fn series_quantity(&self) -> Option<&SeriesQuantity> {
+        self.order
+            .as_ref()
+            .or(self.gci.as_ref())
+            .or(self.change.as_ref())
+    }
 }
 
 #[derive(Debug, Clone, Deserialize)]

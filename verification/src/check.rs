@@ -250,19 +250,8 @@ pub fn measure_value(
     ctx: &Context,
     ref_history: Option<&(Vec<f64>, Vec<f64>)>,
 ) -> Result<f64, String> {
-    let selectors = [
-        m.metric.is_some(),
-        m.at.is_some(),
-        m.extreme.is_some(),
-        m.error.is_some(),
-        m.ratio.is_some(),
-        m.order.is_some(),
-        m.gci.is_some(),
-    ];
-    if selectors.iter().filter(|&&b| b).count() != 1 {
-        return Err(
-            "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into(),
-        );
+    if m.selector_count() != 1 {
+        return Err(crate::case::ONE_SELECTOR.into());
     }
     let mut value = if let Some(name) = &m.metric {
         let d = job(scene_name(m, ctx)?, ctx)?;
@@ -332,6 +321,8 @@ pub fn measure_value(
         series_order(q, ctx)?.0
     } else if let Some(q) = &m.gci {
         series_order(q, ctx)?.1
+    } else if let Some(q) = &m.change {
+        series_change(q, ctx)?
     } else {
         unreachable!()
     };
@@ -387,6 +378,15 @@ pub fn series_order(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<(f
         return Err("the three finest levels must have a constant refinement ratio".into());
     }
     Ok(order_and_gci(f[n - 3], f[n - 2], f[n - 1], r))
+}
+
+/// Relative change from the first to the last level: `|f_first - f_last| / |f_last|`.
+pub fn series_change(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<f64, String> {
+    let (_, f, _) = series_values(&q.series, &q.metric, ctx)?;
+    match (f.first(), f.last()) {
+        (Some(first), Some(last)) if f.len() >= 2 => Ok(((first - last) / last).abs()),
+        _ => Err("a change needs at least two levels".into()),
+    }
 }
 
 /// Observed order `p = ln(|f1 - f2| / |f2 - f3|) / ln r` (f1 coarse) and the fine-grid GCI

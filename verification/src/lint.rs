@@ -316,22 +316,8 @@ fn lint_measure(
     series: &BTreeMap<String, serde_saphyr::Spanned<crate::case::SeriesSpec>>,
     out: &mut Vec<String>,
 ) {
-    let n = [
-        m.metric.is_some(),
-        m.at.is_some(),
-        m.extreme.is_some(),
-        m.error.is_some(),
-        m.ratio.is_some(),
-        m.order.is_some(),
-        m.gci.is_some(),
-    ]
-    .iter()
-    .filter(|&&b| b)
-    .count();
-    if n != 1 {
-        out.push(
-            "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci".into(),
-        );
+    if m.selector_count() != 1 {
+        out.push(crate::case::ONE_SELECTOR.into());
     }
     if let Some(s) = &m.scene {
         if !scenes.contains(s) {
@@ -345,11 +331,12 @@ fn lint_measure(
         for x in r {
             lint_measure(x, has_default || m.scene.is_some(), scenes, series, out);
         }
-    } else if let Some(q) = m.order.as_ref().or(m.gci.as_ref()) {
+    } else if let Some(q) = m.series_quantity() {
+        let needed = if m.change.is_some() { 2 } else { 3 };
         match series.get(&q.series) {
             None => out.push(format!("no series {:?} in this case", q.series)),
-            Some(s) if s.value.levels.len() < 3 => {
-                out.push(format!("series {:?} needs three levels", q.series))
+            Some(s) if s.value.levels.len() < needed => {
+                out.push(format!("series {:?} needs {needed} levels", q.series))
             }
             _ => {}
         }

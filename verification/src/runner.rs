@@ -284,10 +284,7 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
             if !check_matches(case, &k.id, &opts.filter) {
                 continue;
             }
-            for q in [&k.measure.value.order, &k.measure.value.gci]
-                .into_iter()
-                .flatten()
-            {
+            if let Some(q) = k.measure.value.series_quantity() {
                 series_metrics
                     .entry(q.series.clone())
                     .or_default()
