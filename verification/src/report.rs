@@ -490,6 +490,7 @@ pub fn write_report_with(
         }));
     }
     let (table1, table2) = paper_tables(&results, &repo.root);
+    let reading = reading_context(&results);
     let envv = serde_json::json!({
         "commit": env["commit"].as_str().unwrap_or("unknown"),
         "rustc": env["rustc"].as_str().unwrap_or("unknown"),
@@ -517,6 +518,7 @@ pub fn write_report_with(
         "cases": cases,
         "table1": table1,
         "table2": table2,
+        "reading": reading,
         "energy_plots": energy_plots,
         "env": envv,
         "now": command("date", &["-u", "+%Y-%m-%dT%H:%M:%SZ"], &repo.root),
@@ -550,6 +552,32 @@ fn rel(c: Option<f64>, p: Option<f64>) -> String {
 
 fn short(x: Option<f64>) -> String {
     x.map_or("-".into(), |v| format!("{v:.4}"))
+}
+
+/// Which reading of the paper the suites run and what the literal reading costs, from this
+/// run's own results: the energy balance of the default and literal pairings (energy suite)
+/// and the error that stops the literal elasto-plastic run (table1 suite).
+fn reading_context(results: &serde_json::Value) -> serde_json::Value {
+    let case = |suite: &str| {
+        results["cases"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .find(|c| c["suite"] == suite)
+    };
+    let balance = |scene: &str| {
+        case("energy").and_then(|c| c["metrics"][scene]["max_energy_balance_error"].as_f64())
+    };
+    let literal_error = case("table1")
+        .and_then(|c| c["modelling"]["literal-plastic"]["expected error"].as_str())
+        .filter(|m| !m.is_empty());
+    serde_json::json!({
+        "present": balance("literal-pairing").is_some() || literal_error.is_some(),
+        "default_elastic": fmt(balance("elastic")),
+        "default_plastic": fmt(balance("plastic")),
+        "literal_elastic": fmt(balance("literal-pairing")),
+        "literal_plastic_error": literal_error.unwrap_or("the run did not stop (see table1/literal-reading-plastic-breaks)"),
+    })
 }
 
 /// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
