@@ -1,6 +1,6 @@
 //! criterion benchmarks: the element kernels (internal force + material update) per element
 //! type, elastic (precomputed stiffness and stress path) and plastic with every point
-//! yielding, on the example's 80x16 mesh; and a short whole run (time loop only).
+//! yielding, on the paper scene's 80x16 mesh; and a short whole run (time loop only).
 //! Throughput is reported per element: criterion's "elem/s" is element-steps per second.
 
 use std::path::Path;
@@ -13,10 +13,10 @@ use impact_solver::mesh::PlateMesh;
 use impact_solver::scene::End;
 use impact_solver::{simulate, Quiet, Scene};
 
-const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
+const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
 
 fn scene() -> Scene {
-    Scene::from_yaml(PLASTIC, Path::new("example-plastic.yaml")).unwrap()
+    Scene::from_yaml(PLASTIC, Path::new("paper-plastic.yaml")).unwrap()
 }
 
 fn bench_model<F: Formulation, M: ConstitutiveModel>(
@@ -93,7 +93,7 @@ fn whole_steps(c: &mut Criterion) {
         probe.n_elements as u64 * probe.n_steps,
     ));
     group.sample_size(10);
-    group.bench_function("example-plastic/q4-sri/0.2ms", |b| {
+    group.bench_function("paper-plastic/q4-sri/0.2ms", |b| {
         b.iter_custom(|iters| {
             let mut total = std::time::Duration::ZERO;
             for _ in 0..iters {

@@ -8,7 +8,7 @@ use std::path::Path;
 use impact_solver::scene::{DtChoice, End, Hardening, Load};
 use impact_solver::{simulate, Error, Quiet, Scene};
 
-use crate::common::{example, markdown_table, write_csv};
+use crate::common::{markdown_table, paper, write_csv};
 
 /// Energy balance bound of an accurate run (1 %: coarse meshes, cfl up to 1).
 const BALANCE_BOUND: f64 = 1e-2;
@@ -60,7 +60,7 @@ fn attempt(scene: &Scene) -> Outcome {
 }
 
 fn small(plastic: bool, mesh: &str) -> Scene {
-    let mut s = example(plastic);
+    let mut s = paper(plastic);
     s.mesh.nx = 20;
     s.mesh.ny = 4;
     match mesh {
@@ -245,7 +245,7 @@ fn extreme_inputs(quick: bool) -> Vec<Vec<String>> {
         cases.push((name.into(), s));
     }
     let steps = if quick { 100_000.0 } else { 1_000_000.0 };
-    let mut long = example(false);
+    let mut long = paper(false);
     long.mesh.nx = 10;
     long.mesh.ny = 2;
     long.output.every = Some(1e-3);

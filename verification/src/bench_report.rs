@@ -221,6 +221,8 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
     let refs = load(&refs_path);
     let kernels = load(&kernels_path);
     let runs = load(&runs_path);
+    // Optional: written by `impact-bench throughput` since the Python side-by-side was added.
+    let python = load(&Some(dir.join("throughput-python.csv")).filter(|p| p.is_file()));
     let (cfl_csv, extreme_csv) = if stab_md_path.is_none() {
         let f = |n: &str| Some(dir.join(n)).filter(|p| p.is_file());
         (
@@ -389,6 +391,7 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         "wp_all": all,
         "kernels": kernels.as_ref().map(table_value),
         "runs": runs.as_ref().map(table_value),
+        "python": python.as_ref().map(table_value),
         "stability": stability,
         "stability_cfl": cfl_csv.as_ref().map(table_value),
         "stability_extreme": extreme_csv.as_ref().map(table_value),

@@ -742,46 +742,86 @@ fn modal_beam(p: &Params) -> Result<RunData, String> {
 /// int_0^T (tau - sigma(d, t)) dt = tau d / c once the front has passed and before its
 /// reflection returns, whatever the numerical dispersion of the front. Closed forms
 /// c_P = sqrt((lambda + 2 mu) / rho), c_S = sqrt(mu / rho) are computed here.
+/// A plane-strain plane wave through the thickness (the `plane-wave` builtin and the
+/// work-precision benchmark): `wave` "p" (roller ends, 1 MPa normal traction step on the top
+/// surface) or "s" (slider ends, 1 MPa shear traction step), full model 4 x `ny` of
+/// `element` through h = 20 mm, run for 8 us at `cfl`, probe M at mid-depth.
+pub struct PlaneWave {
+    pub wave: &'static str,
+    pub ny: usize,
+    pub scene: impact_solver::Scene,
+    /// The closed-form speed, m/s: c_P = sqrt((lambda + 2 mu)/rho) or c_S = sqrt(mu/rho).
+    pub exact_mps: f64,
+}
+
+const WAVE_H: f64 = 0.02;
+
+impl PlaneWave {
+    pub fn new(wave: &str, ny: usize, element: ElementKind, cfl: f64) -> Result<Self, String> {
+        let (e, nu, rho, h): (f64, f64, f64, f64) = (207e9, 0.3, 7850.0, WAVE_H);
+        let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let mu = e / (2.0 * (1.0 + nu));
+        let (wave, ends, traction, exact_mps) = match wave {
+            "p" => (
+                "p",
+                "roller",
+                "normal: 1.0e6",
+                ((lambda + 2.0 * mu) / rho).sqrt(),
+            ),
+            "s" => ("s", "slider", "shear: 1.0e6", (mu / rho).sqrt()),
+            o => return Err(format!("wave {o:?}: expected p or s")),
+        };
+        let text = format!(
+            "plate: {{length: 0.2, width: 0.2, thickness: {h}, ends: {ends}}}\n\
+             material: {{density: {rho}, youngs_modulus: {e}, poisson_ratio: {nu}}}\n\
+             mesh: {{nx: 4, ny: {ny}, element: {}, model: full}}\n\
+             load: {{traction: {{{traction}, duration: 1.0}}}}\n\
+             time: {{end: 8.0e-6, dt: {{cfl: {cfl}}}}}\n\
+             output: {{probes: {{M: {{x: 0.1, y: 0.01}}}}}}\n",
+            element.name()
+        );
+        let scene =
+            impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plane-wave)"))
+                .map_err(|e| e.to_string())?;
+        Ok(PlaneWave {
+            wave,
+            ny,
+            scene,
+            exact_mps,
+        })
+    }
+
+    /// The measured speed, m/s, from the momentum deficit of the layer above the probe:
+    /// `int_0^T (tau - sigma(d, t)) dt = tau d / c` before the reflection returns.
+    pub fn measured_speed(&self, history: &impact_solver::History) -> Result<f64, String> {
+        let (column, sign) = match self.wave {
+            "p" => ("M_syy_Pa", -1.0),
+            _ => ("M_sxy_Pa", 1.0),
+        };
+        // The probe (y = h/2) lies in the element row just below mid-depth; the stress of that
+        // row is the force between its node rows, so the depth is its centre's.
+        let (h, dy) = (WAVE_H, WAVE_H / self.ny as f64);
+        let depth = h - (0.5 * h - 0.5 * dy);
+        let until = 0.97 * (2.0 * h - depth) / self.exact_mps;
+        let deficit = history
+            .time_integral(column, until, |s| 1.0 - sign * s / 1e6)
+            .ok_or_else(|| format!("no column {column}"))?;
+        Ok(depth / deficit)
+    }
+}
+
 fn plane_wave(p: &Params) -> Result<RunData, String> {
-    let wave = p_str(p, "wave", "p")?;
-    let ny = p_f64(p, "ny", 80.0)? as usize;
-    let (e, nu, rho, h): (f64, f64, f64, f64) = (207e9, 0.3, 7850.0, 0.02);
-    let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    let mu = e / (2.0 * (1.0 + nu));
-    let (ends, traction, column, sign, exact) = match wave {
-        "p" => (
-            "roller",
-            "normal: 1.0e6",
-            "M_syy_Pa",
-            -1.0,
-            ((lambda + 2.0 * mu) / rho).sqrt(),
-        ),
-        "s" => ("slider", "shear: 1.0e6", "M_sxy_Pa", 1.0, (mu / rho).sqrt()),
-        o => return Err(format!("wave {o:?}: expected p or s")),
-    };
-    let text = format!(
-        "plate: {{length: 0.2, width: 0.2, thickness: {h}, ends: {ends}}}\n\
-         material: {{density: {rho}, youngs_modulus: {e}, poisson_ratio: {nu}}}\n\
-         mesh: {{nx: 4, ny: {ny}, element: q4-sri, model: full}}\n\
-         load: {{traction: {{{traction}, duration: 1.0}}}}\n\
-         time: {{end: 8.0e-6, dt: {{cfl: 0.5}}}}\n\
-         output: {{probes: {{M: {{x: 0.1, y: 0.01}}}}}}\n"
-    );
-    let scene =
-        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plane-wave)"))
-            .map_err(|e| e.to_string())?;
-    let o =
-        impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
-    // The probe (y = h/2) lies in the element row just below mid-depth; the stress of that
-    // row is the force between its node rows, so the depth is its centre's.
-    let dy = h / ny as f64;
-    let depth = h - (0.5 * h - 0.5 * dy);
-    let until = 0.97 * (2.0 * h - depth) / exact;
-    let deficit = o
-        .history
-        .time_integral(column, until, |s| 1.0 - sign * s / 1e6)
-        .ok_or_else(|| format!("no column {column}"))?;
-    let c = depth / deficit;
+    let element = element_kind(p_str(p, "element", "q4-sri")?)?;
+    let problem = PlaneWave::new(
+        p_str(p, "wave", "p")?,
+        p_f64(p, "ny", 80.0)? as usize,
+        element,
+        p_f64(p, "cfl", 0.5)?,
+    )?;
+    let o = impact_solver::simulate(&problem.scene, &mut impact_solver::Quiet)
+        .map_err(|e| e.to_string())?;
+    let c = problem.measured_speed(&o.history)?;
+    let exact = problem.exact_mps;
     let mut m = BTreeMap::new();
     m.insert("speed_mps".into(), c);
     m.insert("closed_form_mps".into(), exact);
