@@ -31,6 +31,39 @@ struct Problem {
     history_metric: bool,
 }
 
+/// One timed configuration of a problem.
+struct Config {
+    problem: &'static str,
+    element: ElementKind,
+    mesh: String,
+    cfl: f64,
+}
+
+impl Config {
+    /// Appends the CSV row (problem, element, mesh, cfl, dt s, error, setup s, loop s) and
+    /// returns the plot point (error, total wall time s).
+    fn record(
+        &self,
+        rows: &mut Vec<Vec<String>>,
+        dt: f64,
+        error: f64,
+        setup: f64,
+        time_loop: f64,
+    ) -> (f64, f64) {
+        rows.push(vec![
+            self.problem.to_string(),
+            self.element.name().to_string(),
+            self.mesh.clone(),
+            format!("{}", self.cfl),
+            format!("{dt:.6e}"),
+            format!("{error:.4e}"),
+            format!("{setup:.4e}"),
+            format!("{time_loop:.4e}"),
+        ]);
+        (error.max(1e-12), (setup + time_loop).max(1e-6))
+    }
+}
+
 /// The plane-strain P wave through the 20 mm thickness, 4 x ny elements (ny = `levels`):
 /// relative error of the measured speed against c_P.
 fn wave_rows(
@@ -51,17 +84,13 @@ fn wave_rows(
                     .measured_speed(&o.history)
                     .map_err(anyhow::Error::msg)?;
                 let e = (speed / wave.exact_mps - 1.0).abs();
-                rows.push(vec![
-                    "wave-p".to_string(),
-                    element.name().to_string(),
-                    format!("4x{}", wave.ny),
-                    format!("{cfl}"),
-                    format!("{:.6e}", o.summary.dt),
-                    format!("{e:.4e}"),
-                    format!("{setup:.4e}"),
-                    format!("{time_loop:.4e}"),
-                ]);
-                points.push((e.max(1e-12), (setup + time_loop).max(1e-6)));
+                let config = Config {
+                    problem: "wave-p",
+                    element,
+                    mesh: format!("4x{}", wave.ny),
+                    cfl,
+                };
+                points.push(config.record(rows, o.summary.dt, e, setup, time_loop));
             }
             series.push((format!("{} cfl {cfl}", element.name()), points));
         }
@@ -174,17 +203,13 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                     let scene = with(&p.scene, element, level, cfl);
                     let (setup, time_loop, o) = timed(&scene, repeats)?;
                     let e = error(p, &o, &reference);
-                    rows.push(vec![
-                        p.name.to_string(),
-                        element.name().to_string(),
-                        format!("{}x{}", level.0, level.1),
-                        format!("{cfl}"),
-                        format!("{:.6e}", o.summary.dt),
-                        format!("{e:.4e}"),
-                        format!("{setup:.4e}"),
-                        format!("{time_loop:.4e}"),
-                    ]);
-                    points.push((e.max(1e-12), (setup + time_loop).max(1e-6)));
+                    let config = Config {
+                        problem: p.name,
+                        element,
+                        mesh: format!("{}x{}", level.0, level.1),
+                        cfl,
+                    };
+                    points.push(config.record(&mut rows, o.summary.dt, e, setup, time_loop));
                 }
                 series.push((format!("{} cfl {cfl}", element.name()), points));
             }
