@@ -4,8 +4,8 @@ use std::path::Path;
 
 use impact_solver::{simulate, Outcome, Quiet, Scene};
 
-pub const ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
-pub const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
+const ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
+const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
 const PULSE: &str = include_str!("../../verification/scenes/paper-pulse-elastic.yaml");
 
 /// A scene of the paper's case on the reconstructed plate, without field output and with a

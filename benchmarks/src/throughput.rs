@@ -175,10 +175,17 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
     );
 
     let mut runs = Vec::new();
+    // Per run: (kind, Rust wall time s, impulse N s), for the Python side by side.
+    let mut rust_runs = Vec::new();
     for plastic in [false, true] {
         let scene = paper(plastic);
         let (setup, time_loop, o) = timed(&scene, if quick { 1 } else { 3 })?;
         let s = &o.summary;
+        rust_runs.push((
+            if plastic { "plastic" } else { "elastic" },
+            setup + time_loop,
+            s.impulse,
+        ));
         let target = if plastic { "< 0.5 s" } else { "-" };
         runs.push(vec![
             if plastic {
@@ -221,31 +228,29 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
         "Whole runs (Table 1 paper scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}",
         markdown_table(&header, &runs)
     );
-    python_side_by_side(out, quick)
+    python_side_by_side(out, quick, &rust_runs)
 }
 
 /// The same scene in the Rust solver and in the independent Python FE (scripts/indep_fe, run
 /// with the project's .venv): wall times and their ratio, and the impulse of each as evidence
-/// that both ran the same problem. The scenes are the reference-data ones (Table 1 on the
-/// reconstructed plate, history every 1e-5 s). Without the venv, a row says so.
-fn python_side_by_side(out: &Path, quick: bool) -> anyhow::Result<()> {
+/// that both ran the same problem. Python runs `reference-data/independent/scenes/table1-*`,
+/// the file form of the whole runs' `paper()` scenes (history every 1e-5 s, no fields), whose
+/// Rust times and impulses `rust_runs` carries. Without the venv, a row says so.
+fn python_side_by_side(
+    out: &Path,
+    quick: bool,
+    rust_runs: &[(&str, f64, f64)],
+) -> anyhow::Result<()> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .expect("the benchmarks crate lives in the workspace");
     let python = root.join(".venv/bin/python");
-    let kinds: &[&str] = if quick {
-        &["elastic"]
-    } else {
-        &["elastic", "plastic"]
-    };
+    let compared = if quick { &rust_runs[..1] } else { rust_runs };
     let mut rows = Vec::new();
-    for kind in kinds {
+    for &(kind, rust_s, rust_impulse) in compared {
         let scene_path = root.join(format!(
             "reference-data/independent/scenes/table1-{kind}.yaml"
         ));
-        let scene = impact_solver::Scene::from_file(&scene_path)?;
-        let (setup, time_loop, rust) = timed(&scene, if quick { 1 } else { 3 })?;
-        let rust_s = setup + time_loop;
         let name = format!("table1-{kind}");
         if !python.is_file() {
             rows.push(vec![
@@ -279,7 +284,7 @@ fn python_side_by_side(out: &Path, quick: bool) -> anyhow::Result<()> {
             serde_json::from_str(&std::fs::read_to_string(work.join("summary.json"))?)?;
         let python_s = summary["wall_time_s"].as_f64().unwrap_or(f64::NAN);
         let python_impulse = summary["impulse_Ns"].as_f64().unwrap_or(f64::NAN);
-        let impulse_diff = (python_impulse / rust.summary.impulse - 1.0).abs();
+        let impulse_diff = (python_impulse / rust_impulse - 1.0).abs();
         rows.push(vec![
             name,
             format!("{rust_s:.3}"),

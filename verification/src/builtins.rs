@@ -736,18 +736,18 @@ fn modal_beam(p: &Params) -> Result<RunData, String> {
     })
 }
 
-/// A plane P (roller ends, normal traction) or S (slider ends, shear traction) wave through
-/// the thickness of a plate scene under a uniform traction step of 1 MPa on the top surface.
-/// The speed comes from the momentum balance of the layer above a probe at depth d:
-/// int_0^T (tau - sigma(d, t)) dt = tau d / c once the front has passed and before its
-/// reflection returns, whatever the numerical dispersion of the front. Closed forms
-/// c_P = sqrt((lambda + 2 mu) / rho), c_S = sqrt(mu / rho) are computed here.
 /// A plane-strain plane wave through the thickness (the `plane-wave` builtin and the
 /// work-precision benchmark): `wave` "p" (roller ends, 1 MPa normal traction step on the top
 /// surface) or "s" (slider ends, 1 MPa shear traction step), full model 4 x `ny` of
-/// `element` through h = 20 mm, run for 8 us at `cfl`, probe M at mid-depth.
+/// `element` through h = 20 mm, run for 8 us at `cfl`, probe M at mid-depth. The speed comes
+/// from the momentum balance of the layer above the probe at depth d:
+/// int_0^T (tau - sigma(d, t)) dt = tau d / c once the front has passed and before its
+/// reflection returns, whatever the numerical dispersion of the front.
 pub struct PlaneWave {
-    pub wave: &'static str,
+    /// The probe's stress column whose deficit gives the speed (M_syy_Pa or M_sxy_Pa), and
+    /// the sign that makes the 1 MPa traction positive in it.
+    column: &'static str,
+    sign: f64,
     pub ny: usize,
     pub scene: impact_solver::Scene,
     /// The closed-form speed, m/s: c_P = sqrt((lambda + 2 mu)/rho) or c_S = sqrt(mu/rho).
@@ -761,14 +761,15 @@ impl PlaneWave {
         let (e, nu, rho, h): (f64, f64, f64, f64) = (207e9, 0.3, 7850.0, WAVE_H);
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         let mu = e / (2.0 * (1.0 + nu));
-        let (wave, ends, traction, exact_mps) = match wave {
+        let (column, sign, ends, traction, exact_mps) = match wave {
             "p" => (
-                "p",
+                "M_syy_Pa",
+                -1.0,
                 "roller",
                 "normal: 1.0e6",
                 ((lambda + 2.0 * mu) / rho).sqrt(),
             ),
-            "s" => ("s", "slider", "shear: 1.0e6", (mu / rho).sqrt()),
+            "s" => ("M_sxy_Pa", 1.0, "slider", "shear: 1.0e6", (mu / rho).sqrt()),
             o => return Err(format!("wave {o:?}: expected p or s")),
         };
         let text = format!(
@@ -784,7 +785,8 @@ impl PlaneWave {
             impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plane-wave)"))
                 .map_err(|e| e.to_string())?;
         Ok(PlaneWave {
-            wave,
+            column,
+            sign,
             ny,
             scene,
             exact_mps,
@@ -794,18 +796,14 @@ impl PlaneWave {
     /// The measured speed, m/s, from the momentum deficit of the layer above the probe:
     /// `int_0^T (tau - sigma(d, t)) dt = tau d / c` before the reflection returns.
     pub fn measured_speed(&self, history: &impact_solver::History) -> Result<f64, String> {
-        let (column, sign) = match self.wave {
-            "p" => ("M_syy_Pa", -1.0),
-            _ => ("M_sxy_Pa", 1.0),
-        };
         // The probe (y = h/2) lies in the element row just below mid-depth; the stress of that
         // row is the force between its node rows, so the depth is its centre's.
         let (h, dy) = (WAVE_H, WAVE_H / self.ny as f64);
         let depth = h - (0.5 * h - 0.5 * dy);
         let until = 0.97 * (2.0 * h - depth) / self.exact_mps;
         let deficit = history
-            .time_integral(column, until, |s| 1.0 - sign * s / 1e6)
-            .ok_or_else(|| format!("no column {column}"))?;
+            .time_integral(self.column, until, |s| 1.0 - self.sign * s / 1e6)
+            .ok_or_else(|| format!("no column {}", self.column))?;
         Ok(depth / deficit)
     }
 }

@@ -554,17 +554,20 @@ fn short(x: Option<f64>) -> String {
     x.map_or("-".into(), |v| format!("{v:.4}"))
 }
 
+/// The first case of `suite` in results.json.
+fn suite_case<'a>(results: &'a serde_json::Value, suite: &str) -> Option<&'a serde_json::Value> {
+    results["cases"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .find(|c| c["suite"] == suite)
+}
+
 /// Which reading of the paper the suites run and what the literal reading costs, from this
 /// run's own results: the energy balance of the default and literal pairings (energy suite)
 /// and the error that stops the literal elasto-plastic run (table1 suite).
 fn reading_context(results: &serde_json::Value) -> serde_json::Value {
-    let case = |suite: &str| {
-        results["cases"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .find(|c| c["suite"] == suite)
-    };
+    let case = |suite: &str| suite_case(results, suite);
     let balance = |scene: &str| {
         case("energy").and_then(|c| c["metrics"][scene]["max_energy_balance_error"].as_f64())
     };
@@ -585,14 +588,7 @@ fn paper_tables(
     results: &serde_json::Value,
     root: &Path,
 ) -> (Vec<serde_json::Value>, Vec<serde_json::Value>) {
-    let find = |suite: &str| {
-        results["cases"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .find(|c| c["suite"] == suite)
-            .cloned()
-    };
+    let find = |suite: &str| suite_case(results, suite).cloned();
     let metric = |c: &Option<serde_json::Value>, scene: &str, key: &str| {
         c.as_ref().and_then(|c| c["metrics"][scene][key].as_f64())
     };
