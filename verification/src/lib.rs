@@ -12,3 +12,4 @@ pub mod markdown;
 pub mod report;
 pub mod runner;
 pub mod snapshot;
+pub mod verdict;

@@ -14,6 +14,7 @@ use serde::Serialize;
 use crate::case::{Case, Category};
 use crate::check::{self, CheckResult, Context, Status};
 use crate::jobs::{self, Job, JobResult};
+use crate::verdict::{Tally, Verdict};
 
 /// Paths of the repository the harness works in.
 #[derive(Debug, Clone)]
@@ -89,11 +90,30 @@ pub struct SeriesData {
     pub metrics: BTreeMap<String, Vec<f64>>,
 }
 
+/// Check counts by status (`fail` includes the declared known failures), and apart: the
+/// known failures among the FAILs, the unexpected passes (XPASS) among the OKs, and the
+/// unexpected total (new FAILs + XPASSes) that decides the exit status.
 #[derive(Debug, Clone, Default, Serialize, PartialEq)]
 pub struct Counts {
     pub ok: usize,
     pub fail: usize,
     pub skip: usize,
+    pub known_fail: usize,
+    pub xpass: usize,
+    pub unexpected: usize,
+}
+
+impl Counts {
+    pub fn from_tally(t: &Tally) -> Counts {
+        Counts {
+            ok: t.ok + t.xpass,
+            fail: t.fail + t.known_fail,
+            skip: t.skip,
+            known_fail: t.known_fail,
+            xpass: t.xpass,
+            unexpected: t.unexpected(),
+        }
+    }
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -114,6 +134,15 @@ impl Matrix {
         self.cases
             .iter()
             .flat_map(|c| c.checks.iter().map(move |k| (c, k)))
+    }
+    /// The verdicts of all checks (known failures and unexpected passes apart).
+    pub fn tally(&self) -> Tally {
+        Tally::of(self.all_checks().map(|(_, k)| k))
+    }
+    /// 0 when every failing check is a declared known failure and none passes unexpectedly,
+    /// 1 otherwise (issue 10, section 3).
+    pub fn exit_status(&self) -> u8 {
+        self.tally().exit_status()
     }
 }
 
@@ -300,11 +329,6 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
                 r.status = Status::Fail;
                 r.message = e.clone();
             }
-            match r.status {
-                Status::Ok => matrix.counts.ok += 1,
-                Status::Fail => matrix.counts.fail += 1,
-                Status::Skip => matrix.counts.skip += 1,
-            }
             checks.push(r);
         }
         let mut series_data = BTreeMap::new();
@@ -365,6 +389,7 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         });
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
+    matrix.counts = Counts::from_tally(&matrix.tally());
     Ok(Outcome { matrix, data })
 }
 
@@ -414,11 +439,7 @@ pub fn matrix_text(m: &Matrix) -> String {
             crate::case::Compare::AtMost => "<= ",
             crate::case::Compare::AtLeast => ">= ",
         };
-        let status = if k.status == Status::Fail && k.known_failure.is_some() {
-            "FAIL*".to_string()
-        } else {
-            k.status.name().to_string()
-        };
+        let status = Verdict::of_check(k).label().to_string();
         rows.push([
             c.suite.clone(),
             c.case.clone(),
@@ -449,44 +470,56 @@ pub fn matrix_text(m: &Matrix) -> String {
     out
 }
 
-/// Per-suite counts and the list of non-OK checks with their messages.
+/// Per-suite counts (known failures and unexpected passes apart), the total line, and the
+/// list of non-OK checks with their messages.
 pub fn summary_text(m: &Matrix) -> String {
-    let mut per: BTreeMap<&str, Counts> = BTreeMap::new();
+    let mut per: BTreeMap<&str, Tally> = BTreeMap::new();
     for (c, k) in m.all_checks() {
-        let e = per.entry(&c.suite).or_default();
-        match k.status {
-            Status::Ok => e.ok += 1,
-            Status::Fail => e.fail += 1,
-            Status::Skip => e.skip += 1,
-        }
+        per.entry(&c.suite).or_default().add(Verdict::of_check(k));
     }
-    let mut out = String::from("\nsuite                 OK  FAIL  SKIP\n");
-    for (s, c) in &per {
-        out.push_str(&format!(
-            "{s:<20} {:>4} {:>5} {:>5}\n",
-            c.ok, c.fail, c.skip
-        ));
+    let row = |name: &str, t: &Tally| {
+        format!(
+            "{name:<20} {:>4} {:>6} {:>5} {:>6} {:>5}\n",
+            t.ok, t.known_fail, t.fail, t.xpass, t.skip
+        )
+    };
+    let mut out = String::from("\nsuite                 OK  FAIL*  FAIL  XPASS  SKIP\n");
+    for (s, t) in &per {
+        out.push_str(&row(s, t));
     }
+    let total = m.tally();
+    out.push_str(&row("total", &total));
     out.push_str(&format!(
-        "{:<20} {:>4} {:>5} {:>5}\n",
-        "total", m.counts.ok, m.counts.fail, m.counts.skip
+        "matrix: {} ({} unexpected: {})\n",
+        total.line(),
+        total.unexpected(),
+        if total.unexpected() == 0 {
+            "exit 0"
+        } else {
+            "exit 1"
+        }
     ));
     let notes: Vec<String> = m
         .all_checks()
-        .filter(|(_, k)| k.status != Status::Ok)
+        .filter(|(_, k)| Verdict::of_check(k) != Verdict::Ok)
         .map(|(c, k)| {
+            let v = Verdict::of_check(k);
             let known = k
                 .known_failure
                 .as_ref()
                 .map(|r| format!(" [known: {r}]"))
                 .unwrap_or_default();
+            let message = if v == Verdict::UnexpectedPass {
+                "passes, but is declared a known failure: remove the declaration or explain".into()
+            } else {
+                k.message.clone()
+            };
             format!(
-                "  {} {}/{}/{}: {}{known}",
-                k.status.name(),
+                "  {} {}/{}/{}: {message}{known}",
+                v.label(),
                 c.suite,
                 c.case,
-                k.id,
-                k.message
+                k.id
             )
         })
         .collect();
@@ -515,6 +548,12 @@ pub fn junit_xml(m: &Matrix) -> Result<String, String> {
                 k.tolerance_reason
             );
             let status = match k.status {
+                Status::Ok if k.known_failure.is_some() => {
+                    let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                    s.set_message("XPASS: passes, but is declared a known failure");
+                    s.set_description(detail.clone());
+                    s
+                }
                 Status::Ok => TestCaseStatus::success(),
                 Status::Fail => {
                     let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);

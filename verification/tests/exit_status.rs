@@ -1,0 +1,119 @@
+//! The exit status of `impact verify` (issue 10, section 3), run as a process on scratch
+//! repositories whose one case uses the cheap `hertz-law` builtin:
+//! - 0 when every failing check is a declared known failure and none passes unexpectedly;
+//! - 1 on an undeclared failure, and on a known failure that passes (XPASS);
+//! - 2 on a case that does not parse and on bad usage.
+//!
+//! The matrix's total line counts the known failures apart from the unexpected ones.
+
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+static COUNTER: AtomicUsize = AtomicUsize::new(0);
+
+/// A passing check (round-off of the law's inverse is far below 1e-9).
+const PASSES: &str = r#"
+  - id: passes
+    title: a passing check
+    measure: {metric: round_trip_max_rel}
+    reference: {kind: analytical, value: 0.0, source: "closed form"}
+    tolerance: {absolute: 1.0e-9, reason: "round-off"}
+"#;
+
+/// A failing check (the round-trip error is not 1).
+const FAILS: &str = r#"
+  - id: fails
+    title: a failing check
+    measure: {metric: round_trip_max_rel}
+    reference: {kind: analytical, value: 1.0, source: "deliberately wrong"}
+    tolerance: {absolute: 1.0e-3, reason: "a test of the exit status"}
+"#;
+
+fn known(check: &str) -> String {
+    format!("{}    known_failure: \"declared for the test\"\n", check)
+}
+
+fn scratch(checks: &str) -> PathBuf {
+    let root = std::env::temp_dir().join(format!(
+        "impact-exit-{}-{}",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::SeqCst)
+    ));
+    let _ = std::fs::remove_dir_all(&root);
+    let dir = root.join("verification/cases/suite/case");
+    std::fs::create_dir_all(&dir).unwrap();
+    let yaml = format!(
+        "id: c1\ntitle: t\nrequirement: {{id: REQ-1, text: The solver shall do a thing.}}\n\
+         category: code verification\nscenes:\n  law: {{builtin: hertz-law}}\nchecks:{checks}"
+    );
+    std::fs::write(dir.join("case.yaml"), yaml).unwrap();
+    root
+}
+
+/// (exit code, stdout, stderr) of `impact verify` on a scratch repository.
+fn verify(checks: &str, extra: &[&str]) -> (i32, String, String) {
+    let root = scratch(checks);
+    let out = root.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["verify", "--jobs", "1", "--root"])
+        .arg(&root)
+        .arg("--out")
+        .arg(&out)
+        .args(extra)
+        .output()
+        .expect("run impact");
+    let _ = std::fs::remove_dir_all(&root);
+    (
+        o.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn only_declared_known_failures_exit_0() {
+    let (code, stdout, _) = verify(&format!("{PASSES}{}", known(FAILS)), &[]);
+    assert_eq!(code, 0, "{stdout}");
+    assert!(
+        stdout.contains("1 OK, 1 known FAIL, 0 unexpected FAIL, 0 XPASS, 0 SKIP"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("FAIL*"), "{stdout}");
+}
+
+#[test]
+fn an_undeclared_failure_exits_1() {
+    let (code, stdout, _) = verify(
+        &format!(
+            "{PASSES}{}{FAILS}",
+            known(FAILS).replace("id: fails", "id: fails-known")
+        ),
+        &[],
+    );
+    assert_eq!(code, 1, "{stdout}");
+    assert!(
+        stdout.contains("1 OK, 1 known FAIL, 1 unexpected FAIL, 0 XPASS, 0 SKIP"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn a_known_failure_that_passes_exits_1() {
+    let (code, stdout, _) = verify(&known(PASSES), &[]);
+    assert_eq!(code, 1, "{stdout}");
+    assert!(stdout.contains("XPASS"), "{stdout}");
+    assert!(
+        stdout.contains("0 OK, 0 known FAIL, 0 unexpected FAIL, 1 XPASS, 0 SKIP"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn bad_input_and_bad_usage_exit_2() {
+    let (code, _, stderr) = verify("\n  - id: [not, a, string]\n", &[]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("case.yaml:"), "names the file: {stderr}");
+    let (code, _, stderr) = verify(PASSES, &["--no-such-flag"]);
+    assert_eq!(code, 2, "{stderr}");
+}
