@@ -56,6 +56,23 @@ pub enum Error {
         time_s: f64,
         what: String,
     },
+    /// Stopped by SIGINT/SIGTERM; `cleanup` says what was done with the outputs.
+    #[error("interrupted at step {step} (t = {time_s:.6e} s){cleanup}")]
+    Interrupted {
+        step: u64,
+        time_s: f64,
+        cleanup: String,
+    },
+    /// The scene needs more memory than the machine has or the user allows.
+    #[error("{scene}: {estimate}; {limit}")]
+    TooLarge {
+        scene: PathBuf,
+        estimate: String,
+        limit: String,
+    },
+    /// An output folder that writing into would harm the user's files.
+    #[error("--out {path}: {why}")]
+    OutputFolder { path: PathBuf, why: String },
     #[error("{path}: cannot write output: {source}")]
     WriteOutput {
         path: PathBuf,

@@ -262,6 +262,11 @@ pub struct RunTotals {
 /// Receives field frames and progress while a run goes on.
 pub trait Observer {
     fn progress(&mut self, _time: f64, _end: f64) {}
+    /// Polled every [`crate::interrupt::POLL_EVERY`] steps: `true` stops the run with
+    /// [`Error::Interrupted`].
+    fn stop_requested(&self) -> bool {
+        false
+    }
     fn wants_fields(&self) -> bool {
         false
     }
@@ -514,6 +519,13 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         }
         if n % progress_every == 0 {
             observer.progress(t, end_time);
+        }
+        if n % crate::interrupt::POLL_EVERY == 0 && observer.stop_requested() {
+            return Err(Error::Interrupted {
+                step: n,
+                time_s: t,
+                cleanup: String::new(),
+            });
         }
         if let Some(reason) = stop {
             totals.stop = reason;

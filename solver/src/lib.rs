@@ -7,16 +7,20 @@
 //! [`integrator`] (the time loop), [`energy`], [`summary`], [`output`] (files).
 
 pub mod assembly;
+pub mod budget;
 pub mod contact;
 pub mod element;
 pub mod energy;
 pub mod error;
 pub mod impactor;
 pub mod integrator;
+pub mod interrupt;
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod out_dir;
 pub mod output;
+pub mod progress;
 pub mod scene;
 pub mod stiffness;
 pub mod summary;

@@ -6,16 +6,16 @@ use std::fs;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-
+use crate::budget::{available_memory, bytes as budget_bytes, limit_above, Estimate, MANY_STEPS};
 use crate::error::{Error, Result};
 use crate::integrator::{FieldFrame, History, Observer};
 use crate::mesh::Mesh;
+use crate::out_dir::{check_out_dir, clean_stale_staging, in_user_terms, staging_dir};
+use crate::progress::{Progress, ProgressMode};
 use crate::scene::Scene;
 use crate::{simulate, Outcome};
 
-/// Files `impact simulate` writes into its output folder.
-pub const OUTPUT_FILES: [&str; 4] = ["history.csv", "summary.json", "fields", "fields.pvd"];
+pub use crate::out_dir::OUTPUT_FILES;
 
 /// Writes the history as CSV: a header of column names carrying their units, then one row
 /// per output time; numbers in Rust's shortest round-trip form.
@@ -43,20 +43,20 @@ pub fn write_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<()> {
     fs::write(path, text + "\n").map_err(|e| Error::write(path, e))
 }
 
-/// Writes VTK frames as they come and a progress bar on a terminal.
+/// Writes VTK frames as they come, shows progress, passes on stop requests.
 struct FileObserver<'a> {
     mesh: &'a Mesh,
     fields_dir: Option<PathBuf>,
     frames: Vec<(f64, String)>,
-    bar: Option<ProgressBar>,
+    progress: Progress,
 }
 
 impl Observer for FileObserver<'_> {
     fn progress(&mut self, time: f64, end: f64) {
-        if let Some(bar) = &self.bar {
-            bar.set_position((1000.0 * time / end).round() as u64);
-            bar.set_message(format!("t = {:.4} ms", time * 1e3));
-        }
+        self.progress.at(time, end);
+    }
+    fn stop_requested(&self) -> bool {
+        crate::interrupt::stop_requested()
     }
     fn wants_fields(&self) -> bool {
         self.fields_dir.is_some()
@@ -72,32 +72,118 @@ impl Observer for FileObserver<'_> {
     }
 }
 
+/// How `impact simulate` runs a scene file.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    pub progress: ProgressMode,
+    /// Largest memory estimate accepted, bytes (default: what the machine has available).
+    pub max_memory: Option<f64>,
+    /// Write into a non-empty folder that holds no earlier run.
+    pub force: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            progress: ProgressMode::Off,
+            max_memory: None,
+            force: false,
+        }
+    }
+}
+
 /// Runs a scene file and writes its outputs into `out_dir`. Nothing is left in `out_dir`
 /// when it fails; earlier outputs of the same names are replaced when it succeeds.
 pub fn simulate_to_dir(scene_path: &Path, out_dir: &Path, progress: bool) -> Result<Outcome> {
+    let options = RunOptions {
+        progress: if progress {
+            ProgressMode::Bar
+        } else {
+            ProgressMode::Off
+        },
+        ..RunOptions::default()
+    };
+    simulate_to_dir_with(scene_path, out_dir, &options, &mut |_| {})
+}
+
+/// [`simulate_to_dir`] with options; `say` receives notes for the user (the estimate, a
+/// warning for a long run, stale staging folders removed).
+pub fn simulate_to_dir_with(
+    scene_path: &Path,
+    out_dir: &Path,
+    options: &RunOptions,
+    say: &mut dyn FnMut(String),
+) -> Result<Outcome> {
     let scene = Scene::from_file(scene_path)?;
+    check_out_dir(out_dir, options.force)?;
+    let estimate = Estimate::of(&scene);
+    check_budget(&scene, &estimate, options.max_memory)?;
+    say(format!("simulate: {}", estimate.describe()));
+    if estimate.steps > MANY_STEPS {
+        say(format!(
+            "warning: about {} time steps (more than {}): this run may take hours; shorten time.end or coarsen the mesh if that is not meant",
+            crate::budget::count(estimate.steps),
+            crate::budget::count(MANY_STEPS)
+        ));
+    }
+    for (path, failure) in clean_stale_staging(out_dir) {
+        say(match failure {
+            None => format!("removed {}, left by a run that was killed", path.display()),
+            Some(why) => format!(
+                "warning: {} was left by a run that was killed and cannot be removed: {why}",
+                path.display()
+            ),
+        });
+    }
     let staging = staging_dir(out_dir);
-    let result = run_into(&scene, &staging, progress).and_then(|outcome| {
-        publish(&staging, out_dir)?;
-        Ok(outcome)
-    });
-    let _ = fs::remove_dir_all(&staging);
-    result
+    let what = format!("{} elements", crate::budget::count(estimate.elements));
+    let result =
+        run_into(&scene, &staging, Progress::start(options.progress, &what)).and_then(|outcome| {
+            publish(&staging, out_dir)?;
+            Ok(outcome)
+        });
+    let removed = fs::remove_dir_all(&staging).is_ok();
+    result.map_err(|e| match in_user_terms(e, &staging, out_dir) {
+        Error::Interrupted { step, time_s, .. } => Error::Interrupted {
+            step,
+            time_s,
+            cleanup: format!(
+                "; {} the staging folder {}; {} was left as it was",
+                if removed { "removed" } else { "no" },
+                staging.display(),
+                out_dir.display()
+            ),
+        },
+        other => other,
+    })
 }
 
-fn staging_dir(out_dir: &Path) -> PathBuf {
-    let name = out_dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let parent = out_dir
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    parent.join(format!(".{name}.partial-{}", std::process::id()))
+/// Refuses a scene whose memory estimate exceeds `max_memory` or, without it, the memory
+/// the machine has available.
+fn check_budget(scene: &Scene, estimate: &Estimate, max_memory: Option<f64>) -> Result<()> {
+    let (limit, whose) = match max_memory {
+        Some(m) => (m, "the limit --max-memory"),
+        None => match available_memory() {
+            Some(m) => (m, "the memory available on this machine"),
+            None => return Ok(()),
+        },
+    };
+    if estimate.bytes <= limit {
+        return Ok(());
+    }
+    Err(Error::TooLarge {
+        scene: scene.source.clone(),
+        estimate: format!("this run needs {}", estimate.describe()),
+        limit: format!(
+            "that is more than {whose} ({}); {}, or pass --max-memory {} to run it anyway",
+            budget_bytes(limit),
+            estimate.remedy(),
+            limit_above(estimate.bytes)
+        ),
+    })
 }
 
-fn run_into(scene: &Scene, staging: &Path, progress: bool) -> Result<Outcome> {
+fn run_into(scene: &Scene, staging: &Path, progress: Progress) -> Result<Outcome> {
     let _ = fs::remove_dir_all(staging);
     fs::create_dir_all(staging).map_err(|e| Error::write(staging, e))?;
     let mesh = crate::mesh::PlateMesh::new(&scene.plate, &scene.mesh);
@@ -105,24 +191,14 @@ fn run_into(scene: &Scene, staging: &Path, progress: bool) -> Result<Outcome> {
     if let Some(dir) = &fields_dir {
         fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;
     }
-    let bar = progress.then(|| {
-        let bar = ProgressBar::with_draw_target(Some(1000), ProgressDrawTarget::stderr());
-        bar.set_style(
-            ProgressStyle::with_template("{bar:40} {percent:>3}% {msg} ({elapsed})")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        bar
-    });
     let mut observer = FileObserver {
         mesh: &mesh.mesh,
         fields_dir,
         frames: Vec::new(),
-        bar,
+        progress,
     };
     let outcome = simulate(scene, &mut observer);
-    if let Some(bar) = &observer.bar {
-        bar.finish_and_clear();
-    }
+    observer.progress.finish();
     let outcome = outcome?;
     write_history(&outcome.history, &staging.join("history.csv"))?;
     write_json(&outcome.summary, &staging.join("summary.json"))?;

@@ -6,6 +6,7 @@ pub mod bench_report;
 pub mod builtins;
 pub mod case;
 pub mod check;
+pub mod diff;
 pub mod jobs;
 pub mod lint;
 pub mod markdown;

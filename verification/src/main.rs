@@ -5,6 +5,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use impact_solver::output::RunOptions;
+use impact_solver::progress::ProgressMode;
 use impact_verification::report::ReportOptions;
 use impact_verification::runner::{self, Options, Repo};
 
@@ -25,12 +27,24 @@ enum Command {
     Simulate {
         /// Scene file (YAML, SI units; see README "Scene reference").
         scene: PathBuf,
-        /// Output folder (created; earlier outputs of the same names are replaced).
+        /// Output folder (created; earlier outputs of the same names are replaced). Refused
+        /// when it is `/`, the home folder, or a non-empty folder without an earlier run.
         #[arg(long)]
         out: PathBuf,
-        /// No progress bar and no summary on the terminal.
+        /// No progress and no summary (warnings and errors still print).
         #[arg(long)]
         quiet: bool,
+        /// Largest memory the run may take, e.g. 16G, 500M (powers of 1000); default: the
+        /// memory available on this machine. A scene whose estimate exceeds it is refused.
+        #[arg(long, value_parser = parse_memory)]
+        max_memory: Option<f64>,
+        /// Write into a non-empty --out folder that holds no earlier run.
+        #[arg(long)]
+        force: bool,
+        /// Threads for the element loop (>= 1; default: the number of cores). Results are
+        /// bit-identical for every thread count.
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+        threads: Option<u16>,
     },
     /// Run the verification matrix: prints suite/case/check/status, writes results.json,
     /// junit.xml and matrix.txt to --out. Exit status: 0 when every failing check is a
@@ -72,6 +86,20 @@ enum Command {
         #[arg(long)]
         root: Option<PathBuf>,
     },
+    /// Compare two `simulate` output folders: every summary.json key, and per history.csv
+    /// column the largest absolute and relative difference on A's time grid; exits 1 when
+    /// anything differs by more than --tol.
+    Diff {
+        /// The first run's output folder (the reference, e.g. from the main branch).
+        run_a: PathBuf,
+        /// The second run's output folder.
+        run_b: PathBuf,
+        /// Largest relative difference accepted: |A - B| over max(|A|, |B|) for a summary
+        /// number, over the column's peak |A| for a history column (default 0: bit-identical,
+        /// as runs are deterministic).
+        #[arg(long, default_value_t = 0.0)]
+        tol: f64,
+    },
     /// Write the V&V report (index.html, report.md) from a verify output folder.
     Report {
         /// Folder written by `impact verify`.
@@ -93,20 +121,24 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Simulate { scene, out, quiet } => {
-            let progress = !quiet && std::io::stderr().is_terminal();
-            match impact_solver::output::simulate_to_dir(&scene, &out, progress) {
-                Ok(outcome) => {
-                    if !quiet {
-                        print_summary(&outcome.summary);
-                    }
-                    ExitCode::SUCCESS
-                }
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    ExitCode::from(2)
-                }
-            }
+        Command::Simulate {
+            scene,
+            out,
+            quiet,
+            max_memory,
+            force,
+            threads,
+        } => {
+            let options = RunOptions {
+                progress: match (quiet, std::io::stderr().is_terminal()) {
+                    (true, _) => ProgressMode::Off,
+                    (false, true) => ProgressMode::Bar,
+                    (false, false) => ProgressMode::Lines,
+                },
+                max_memory,
+                force,
+            };
+            simulate(&scene, &out, &options, threads, quiet)
         }
         Command::Verify {
             selectors,
@@ -126,6 +158,22 @@ fn main() -> ExitCode {
             verify(selectors, filter, jobs, out, light, report, root)
         }
         Command::Lint { root } => lint(root),
+        Command::Diff { run_a, run_b, tol } => {
+            match impact_verification::diff::diff_runs(&run_a, &run_b, tol) {
+                Ok(d) => {
+                    print!("{}", d.text());
+                    if d.n_beyond() > 0 {
+                        ExitCode::from(1)
+                    } else {
+                        ExitCode::SUCCESS
+                    }
+                }
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(2)
+                }
+            }
+        }
         Command::Report {
             from,
             out,
@@ -250,6 +298,58 @@ fn verify(
         }
     }
     ExitCode::from(outcome.matrix.exit_status())
+}
+
+fn simulate(
+    scene: &std::path::Path,
+    out: &std::path::Path,
+    options: &RunOptions,
+    threads: Option<u16>,
+    quiet: bool,
+) -> ExitCode {
+    if let Some(n) = threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n.into())
+            .build_global()
+        {
+            eprintln!("error: --threads {n}: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    // SIGINT/SIGTERM: the loop stops at its next poll and the staging folder is removed; a
+    // second signal ends the process at once (the next run removes what it left).
+    let _ = ctrlc::set_handler(|| {
+        if impact_solver::interrupt::stop_requested() {
+            std::process::exit(130);
+        }
+        impact_solver::interrupt::request_stop();
+    });
+    let mut say = |note: String| {
+        if !quiet || note.starts_with("warning") {
+            eprintln!("{note}");
+        }
+    };
+    match impact_solver::output::simulate_to_dir_with(scene, out, options, &mut say) {
+        Ok(outcome) => {
+            if !quiet {
+                print_summary(&outcome.summary);
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e @ impact_solver::Error::Interrupted { .. }) => {
+            eprintln!("stopped: {e}");
+            ExitCode::from(130)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn parse_memory(text: &str) -> Result<f64, String> {
+    impact_solver::budget::parse_bytes(text)
+        .ok_or_else(|| format!("{text:?}: expected a size such as 16G, 500M or 2.5e9 (bytes)"))
 }
 
 fn print_summary(s: &impact_solver::Summary) {

@@ -1,0 +1,195 @@
+//! `impact simulate` protects the user (issue 13): a scene too large for the machine is
+//! refused in well under a second with the estimate in the message; SIGTERM stops a run
+//! cleanly and leaves nothing behind; a run killed with SIGKILL leaves a staging folder that
+//! the next run removes and reports; `/` and foreign non-empty folders are refused as --out;
+//! progress goes to stderr as plain lines when it is not a terminal; --threads 0 is refused.
+//! Reference: the behaviour the issue asks for, observed through the real binary.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+const EXAMPLE: &str = include_str!("../scenes/example-elastic.yaml");
+
+fn dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("simulate-{name}"));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn scene(d: &Path, name: &str, edit: impl Fn(&str) -> String) -> PathBuf {
+    let p = d.join(format!("{name}.yaml"));
+    std::fs::write(&p, edit(&EXAMPLE.replace("  fields: {every: 1.0e-4}", ""))).unwrap();
+    p
+}
+
+fn impact(args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_impact"));
+    c.args(args);
+    c
+}
+
+fn run(args: &[&str]) -> (i32, String) {
+    let Output { status, stderr, .. } = impact(args).output().unwrap();
+    (
+        status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&stderr).into_owned(),
+    )
+}
+
+fn leftovers(d: &Path) -> Vec<String> {
+    std::fs::read_dir(d)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains(".partial-"))
+        .collect()
+}
+
+#[test]
+fn a_billion_element_scene_is_refused_at_once_with_its_estimate() {
+    let d = dir("huge");
+    let s = scene(&d, "huge", |t| {
+        t.replace("nx: 80, ny: 16", "nx: 100000, ny: 10000")
+    });
+    let out = d.join("out");
+    let started = Instant::now();
+    let (code, err) = run(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        started.elapsed() < Duration::from_secs(1),
+        "{:?}",
+        started.elapsed()
+    );
+    assert_eq!(code, 2, "{err}");
+    for part in ["1.00e9 elements", "GB of memory", "mesh.nx", "--max-memory"] {
+        assert!(err.contains(part), "{err:?} lacks {part:?}");
+    }
+    assert!(!out.exists() && leftovers(&d).is_empty());
+    // A user limit below a small run's estimate refuses it too, naming the limit.
+    let small = scene(&d, "small", |t| t.to_string());
+    let (code, err) = run(&[
+        "simulate",
+        small.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--max-memory",
+        "1M",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("the limit --max-memory (1.00 MB)"), "{err}");
+    let (code, err) = run(&["simulate", "x.yaml", "--out", "o", "--max-memory", "lots"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("expected a size such as 16G"), "{err}");
+}
+
+/// Starts a run of a few seconds with stderr piped and waits until its staging folder exists.
+fn start_long_run(d: &Path, out: &Path) -> Child {
+    let s = scene(d, "long", |t| {
+        t.replace("end: 3.0e-3", "end: 2.0")
+            .replace("every: 1.0e-6", "every: 1.0e-3")
+    });
+    let child = impact(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+    .stderr(Stdio::piped())
+    .stdout(Stdio::null())
+    .spawn()
+    .unwrap();
+    let started = Instant::now();
+    while leftovers(d).is_empty() {
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "no staging folder"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    child
+}
+
+fn signal(child: &Child, name: &str) {
+    let ok = Command::new("kill")
+        .args([&format!("-{name}"), &child.id().to_string()])
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok);
+}
+
+#[test]
+fn sigterm_stops_cleanly_and_a_killed_runs_staging_is_removed_by_the_next_run() {
+    let d = dir("signals");
+    let out = d.join("run");
+    let child = start_long_run(&d, &out);
+    signal(&child, "TERM");
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("stopped: interrupted at step"), "{err}");
+    assert!(err.contains("removed the staging folder"), "{err}");
+    assert!(
+        leftovers(&d).is_empty() && !out.exists(),
+        "{:?}",
+        leftovers(&d)
+    );
+
+    let child = start_long_run(&d, &out);
+    signal(&child, "KILL");
+    let _ = child.wait_with_output().unwrap();
+    assert_eq!(leftovers(&d).len(), 1);
+    let s = scene(&d, "short", |t| {
+        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
+            .replace("end: 3.0e-3", "end: 1.0e-4")
+    });
+    let (code, err) = run(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("left by a run that was killed"), "{err}");
+    assert!(leftovers(&d).is_empty());
+    // Progress to a pipe: plain lines, the estimate first.
+    assert!(err.contains("simulate: 80 elements, about"), "{err}");
+    assert!(err.contains("simulate: setting up 80 elements"), "{err}");
+    assert!(
+        err.contains("simulate:   0% t = 0.0000 of 0.1000 ms"),
+        "{err}"
+    );
+}
+
+#[test]
+fn root_and_foreign_folders_are_refused_as_out() {
+    let d = dir("folders");
+    let s = scene(&d, "s", |t| t.to_string());
+    let s = s.to_str().unwrap();
+    let (code, err) = run(&["simulate", s, "--out", "/"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--out /: is the root folder"), "{err}");
+    let mine = d.join("mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    std::fs::write(mine.join("notes.txt"), "mine").unwrap();
+    let (code, err) = run(&["simulate", s, "--out", mine.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("notes.txt") && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(mine.join("notes.txt")).unwrap(),
+        "mine"
+    );
+    let (code, err) = run(&["simulate", s, "--out", "o", "--threads", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--threads"), "{err}");
+}
