@@ -49,6 +49,15 @@ pub enum Error {
     },
     #[error("{}: {} = {}: {}", .0.location, .0.field, .0.value, .0.allowed)]
     InvalidScene(Box<InvalidValue>),
+    /// An override (`key = value` on the scene's dotted YAML path) the scene rules refuse;
+    /// `message` is the rule's own (field, value, what is allowed).
+    #[error("{}: override {key} = {value}: {message}", .file.display())]
+    Override {
+        file: PathBuf,
+        key: String,
+        value: String,
+        message: String,
+    },
     /// The run cannot go on (instability, contact law beyond its maximum, ...).
     #[error("run stopped at step {step} (t = {time_s:.6e} s): {what}")]
     Run {

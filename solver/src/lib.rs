@@ -20,6 +20,7 @@ pub mod material;
 pub mod mesh;
 pub mod out_dir;
 pub mod output;
+pub mod overrides;
 pub mod progress;
 pub mod scene;
 pub mod stiffness;

@@ -12,6 +12,7 @@ use serde::Deserialize;
 use serde_saphyr::Spanned;
 
 use crate::error::{Error, Result, SourceLocation};
+use crate::overrides::Overrides;
 
 type Num = Spanned<f64>;
 type Int = Spanned<i64>;
@@ -110,28 +111,66 @@ pub struct MeshFile {
     pub distortion: Option<Num>,
 }
 
-/// The element formulation.
+/// The element formulation; its YAML names are [`ElementKind::name`], read by [`FromStr`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(try_from = "String", into = "&'static str")]
 pub enum ElementKind {
     /// 2x2 Gauss (locks in bending and under plastic flow; kept for comparison).
-    #[serde(rename = "q4-full")]
     Q4Full,
     /// Selective-reduced integration / B-bar: deviatoric 2x2, volumetric 1 point.
     #[default]
-    #[serde(rename = "q4-sri")]
     Q4Sri,
     /// One point with Flanagan-Belytschko hourglass control.
-    #[serde(rename = "q4-1pt")]
     Q4OnePoint,
 }
 
 impl ElementKind {
+    pub const ALL: [ElementKind; 3] = [
+        ElementKind::Q4Full,
+        ElementKind::Q4Sri,
+        ElementKind::Q4OnePoint,
+    ];
+
+    /// The name in scenes, summaries and reports.
     pub fn name(self) -> &'static str {
         match self {
             ElementKind::Q4Full => "q4-full",
             ElementKind::Q4Sri => "q4-sri",
             ElementKind::Q4OnePoint => "q4-1pt",
         }
+    }
+}
+
+/// The one parser of element names.
+impl std::str::FromStr for ElementKind {
+    type Err = String;
+    fn from_str(name: &str) -> std::result::Result<Self, String> {
+        ElementKind::ALL
+            .into_iter()
+            .find(|k| k.name() == name)
+            .ok_or_else(|| {
+                let known: Vec<String> = ElementKind::ALL
+                    .iter()
+                    .map(|k| format!("`{}`", k.name()))
+                    .collect();
+                format!(
+                    "unknown variant `{name}`, expected one of {}",
+                    known.join(", ")
+                )
+            })
+    }
+}
+
+impl TryFrom<String> for ElementKind {
+    type Error = String;
+    fn try_from(name: String) -> std::result::Result<Self, String> {
+        name.parse()
+    }
+}
+
+impl From<ElementKind> for &'static str {
+    fn from(kind: ElementKind) -> &'static str {
+        kind.name()
     }
 }
 
@@ -423,30 +462,66 @@ pub const DEFAULT_HOURGLASS: f64 = 0.05;
 impl Scene {
     /// Reads and validates a scene file.
     pub fn from_file(path: &Path) -> Result<Scene> {
+        Scene::from_file_with(path, &Overrides::new())
+    }
+
+    /// Reads a scene file, applies `overrides` (see [`Scene::from_yaml_with`]) and validates.
+    pub fn from_file_with(path: &Path, overrides: &Overrides) -> Result<Scene> {
         let text = std::fs::read_to_string(path).map_err(|source| Error::ReadScene {
             path: path.to_path_buf(),
             source,
         })?;
-        Scene::from_yaml(&text, path)
+        Scene::from_yaml_with(&text, overrides, path)
     }
 
     /// Parses and validates YAML text; `source` names it in messages.
     pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
-        let file: SceneFile = serde_saphyr::from_str(text).map_err(|e| {
-            let (line, column) = e
-                .location()
-                .map(|l| (l.line(), l.column()))
-                .unwrap_or((0, 0));
-            Error::ParseScene {
-                location: SourceLocation {
-                    file: source.to_path_buf(),
-                    line,
-                    column,
-                },
-                message: first_line_without_location(&e.to_string()),
-            }
-        })?;
+        let file: SceneFile = parse(text, source)?;
         Validator { source }.scene(file)
+    }
+
+    /// Parses YAML text, sets each override at its dotted path of the scene (e.g.
+    /// `load.impactor.mass`, `time.dt.cfl`) and validates the result with the same rules as
+    /// a scene file. The text itself must be a valid scene; an override the rules refuse
+    /// gives [`Error::Override`], naming the override and carrying the rule's message.
+    pub fn from_yaml_with(text: &str, overrides: &Overrides, source: &Path) -> Result<Scene> {
+        let base = Scene::from_yaml(text, source)?;
+        if overrides.is_empty() {
+            return Ok(base);
+        }
+        let tree: serde_json::Value = parse(text, source)?;
+        let merged = |keys: &mut dyn Iterator<Item = (&String, &serde_json::Value)>| {
+            let mut tree = tree.clone();
+            for (key, value) in keys {
+                crate::overrides::set(&mut tree, key, value)?;
+            }
+            let json = serde_json::to_string_pretty(&tree).map_err(|e| e.to_string())?;
+            let file: SceneFile = parse(&json, source).map_err(|e| without_location(&e))?;
+            Validator { source }
+                .scene(file)
+                .map_err(|e| without_location(&e))
+        };
+        let refused = match merged(&mut overrides.iter()) {
+            Ok(scene) => return Ok(with_locations_of(scene, &base, overrides)),
+            Err(message) => message,
+        };
+        // Name the first override the rules refuse on its own; else the combination.
+        for (key, value) in overrides {
+            if let Err(message) = merged(&mut std::iter::once((key, value))) {
+                return Err(Error::Override {
+                    file: source.to_path_buf(),
+                    key: key.clone(),
+                    value: value.to_string(),
+                    message,
+                });
+            }
+        }
+        Err(Error::Override {
+            file: source.to_path_buf(),
+            key: overrides.keys().cloned().collect::<Vec<_>>().join(", "),
+            value: "(together)".into(),
+            message: refused,
+        })
     }
 
     pub fn is_plastic(&self) -> bool {
@@ -480,6 +555,46 @@ fn first_line_without_location(message: &str) -> String {
         "invalid floating point" => "expected a number".to_string(),
         other => other.to_string(),
     }
+}
+
+/// Parses YAML text into `T`, with the parser's line and column.
+fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T> {
+    serde_saphyr::from_str(text).map_err(|e| {
+        let (line, column) = e
+            .location()
+            .map(|l| (l.line(), l.column()))
+            .unwrap_or((0, 0));
+        Error::ParseScene {
+            location: SourceLocation {
+                file: source.to_path_buf(),
+                line,
+                column,
+            },
+            message: first_line_without_location(&e.to_string()),
+        }
+    })
+}
+
+/// A message about the merged tree, whose lines and columns are not the file's.
+fn without_location(e: &Error) -> String {
+    match e {
+        Error::ParseScene { message, .. } => message.clone(),
+        Error::InvalidScene(v) => format!("{} = {}: {}", v.field, v.value, v.allowed),
+        other => other.to_string(),
+    }
+}
+
+/// The scene of the merged tree, pointing at the file where the file still holds the value.
+fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides) -> Scene {
+    let dt_overridden = overrides
+        .keys()
+        .any(|k| k == "time" || k.starts_with("time.dt"));
+    scene.time.dt_location = if dt_overridden {
+        SourceLocation::file(&base.source)
+    } else {
+        base.time.dt_location.clone()
+    };
+    scene
 }
 
 struct Validator<'a> {

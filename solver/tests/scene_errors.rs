@@ -131,3 +131,60 @@ fn a_run_that_fails_midway_leaves_nothing_behind() {
     assert!(!out.exists());
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
 }
+
+/// Overrides are set at the scene's dotted YAML paths before validation: the same rules,
+/// messages naming the override, and an unchanged scene where nothing is overridden.
+#[test]
+fn overrides_obey_the_scene_rules_and_name_the_override() {
+    use impact_solver::overrides::Overrides;
+    use impact_solver::scene::{DtChoice, End};
+    let with = |pairs: &[(&str, serde_json::Value)]| {
+        let o: Overrides = pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.clone()))
+            .collect();
+        Scene::from_yaml_with(EXAMPLE, &o, Path::new("example.yaml"))
+    };
+    let plain = Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap();
+    assert_eq!(with(&[]).unwrap(), plain);
+    let e = with(&[("time.dt.cfl", 1.5.into())]).unwrap_err().to_string();
+    assert_mentions(
+        &e,
+        &[
+            "example.yaml: override time.dt.cfl = 1.5",
+            "time.dt.cfl = 1.5: must lie in (0, 1]",
+        ],
+    );
+    let e = with(&[("mesh.nx", 40.into()), ("mesh.ny", 3.into())])
+        .unwrap_err()
+        .to_string();
+    assert_mentions(&e, &["override mesh.ny = 3", "mesh.ny = 3", "even integer"]);
+    let e = with(&[("load.impactor.mas", 1.0.into())])
+        .unwrap_err()
+        .to_string();
+    assert_mentions(&e, &["override load.impactor.mas", "unknown field `mas`"]);
+    let e = with(&[("mesh.element", "q5".into())]).unwrap_err().to_string();
+    assert_mentions(&e, &["override mesh.element", "q5", "q4-sri"]);
+    let s = with(&[
+        ("time.dt.fixed", 1e-8.into()),
+        ("time.end.after_contact", 2e-4.into()),
+        ("mesh.nx", 40.into()),
+        ("load.impactor.mass", 9.0.into()),
+    ])
+    .unwrap();
+    assert_eq!(s.time.dt, DtChoice::Fixed(1e-8));
+    assert_eq!(
+        s.time.end,
+        End::AfterContact {
+            after: 2e-4,
+            limit: 0.05
+        }
+    );
+    assert_eq!(s.mesh.nx, 40);
+    assert_eq!(s.impactor().unwrap().mass, 9.0);
+    let mut back = s.clone();
+    back.time = plain.time.clone();
+    back.mesh.nx = plain.mesh.nx;
+    back.load = plain.load.clone();
+    assert_eq!(back, plain, "nothing else changes");
+}

@@ -51,12 +51,7 @@ fn p_str<'a>(p: &'a Params, k: &str, default: &'a str) -> Result<&'a str, String
 }
 
 fn element_kind(name: &str) -> Result<ElementKind, String> {
-    match name {
-        "q4-full" => Ok(ElementKind::Q4Full),
-        "q4-sri" => Ok(ElementKind::Q4Sri),
-        "q4-1pt" => Ok(ElementKind::Q4OnePoint),
-        o => Err(format!("unknown element {o:?}")),
-    }
+    name.parse().map_err(|e| format!("param element: {e}"))
 }
 
 pub fn run(name: &str, p: &Params) -> Result<RunData, String> {

@@ -7,9 +7,7 @@ use std::sync::Arc;
 
 use impact_solver::integrator::{FieldFrame, Observer};
 use impact_solver::material::FlowCurve;
-use impact_solver::scene::{
-    ContactLawChoice, DtChoice, ElementKind, End, Load, MidSpanNode, Model, Scene,
-};
+use impact_solver::scene::{DtChoice, End, Load, MidSpanNode, Model, Scene};
 use impact_solver::History;
 use serde_json::Value;
 
@@ -385,11 +383,8 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
     match (&spec.file, &spec.builtin) {
         (Some(file), None) => {
             let path = dir.join(file);
-            let mut scene = Scene::from_file(&path).map_err(|e| format!("{loc}: scene: {e}"))?;
-            for (key, value) in &spec.set {
-                apply_override(&mut scene, key, value)
-                    .map_err(|e| format!("{loc}: set {key}: {e}"))?;
-            }
+            let scene = Scene::from_file_with(&path, &spec.set)
+                .map_err(|e| format!("{loc}: scene: {e}"))?;
             Ok(Job::Scene {
                 scene: Box::new(scene),
                 stress_bound: spec.stress_bound,
@@ -412,130 +407,6 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
             "{loc}: a scene needs exactly one of `file` or `builtin`"
         )),
     }
-}
-
-fn num(v: &Value) -> Result<f64, String> {
-    v.as_f64()
-        .filter(|x| x.is_finite())
-        .ok_or_else(|| format!("{v} is not a finite number"))
-}
-
-fn positive(v: &Value) -> Result<f64, String> {
-    let x = num(v)?;
-    if x > 0.0 {
-        Ok(x)
-    } else {
-        Err(format!("{x} must be > 0"))
-    }
-}
-
-fn count(v: &Value) -> Result<usize, String> {
-    v.as_u64()
-        .filter(|&n| n > 0)
-        .map(|n| n as usize)
-        .ok_or_else(|| format!("{v} is not a positive integer"))
-}
-
-fn text(v: &Value) -> Result<&str, String> {
-    v.as_str().ok_or_else(|| format!("{v} is not a string"))
-}
-
-fn mid_span(v: &Value) -> Result<MidSpanNode, String> {
-    match text(v)? {
-        "mid-plane" => Ok(MidSpanNode::MidPlane),
-        "top-surface" => Ok(MidSpanNode::TopSurface),
-        o => Err(format!("{o:?}: expected mid-plane or top-surface")),
-    }
-}
-
-/// Applies one dotted override to a validated scene.
-pub fn apply_override(scene: &mut Scene, key: &str, v: &Value) -> Result<(), String> {
-    let limit_of = |end: End| match end {
-        End::AfterContact { limit, .. } => limit,
-        End::At(_) => 0.05,
-    };
-    match key {
-        "plate.length" => scene.plate.length = positive(v)?,
-        "plate.width" => scene.plate.width = positive(v)?,
-        "plate.thickness" => scene.plate.thickness = positive(v)?,
-        "material.plasticity" if v.is_null() => scene.material.plasticity = None,
-        "material.youngs_modulus" => scene.material.youngs_modulus = positive(v)?,
-        "material.poisson_ratio" => scene.material.poisson_ratio = num(v)?,
-        "mesh.nx" => scene.mesh.nx = count(v)?,
-        "mesh.ny" => {
-            let ny = count(v)?;
-            if ny % 2 != 0 {
-                return Err("ny must be even".into());
-            }
-            scene.mesh.ny = ny
-        }
-        "mesh.grading" => scene.mesh.grading = positive(v)?,
-        "mesh.element" => {
-            scene.mesh.element = match text(v)? {
-                "q4-full" => ElementKind::Q4Full,
-                "q4-sri" => ElementKind::Q4Sri,
-                "q4-1pt" => ElementKind::Q4OnePoint,
-                o => return Err(format!("{o:?}: expected q4-full, q4-sri or q4-1pt")),
-            }
-        }
-        "mesh.model" => {
-            scene.mesh.model = match text(v)? {
-                "half" => Model::Half,
-                "full" => Model::Full,
-                o => return Err(format!("{o:?}: expected half or full")),
-            }
-        }
-        "time.end" => scene.time.end = End::At(positive(v)?),
-        "time.after_contact" => {
-            scene.time.end = End::AfterContact {
-                after: num(v)?,
-                limit: limit_of(scene.time.end),
-            }
-        }
-        "time.limit" => match &mut scene.time.end {
-            End::AfterContact { limit, .. } => *limit = positive(v)?,
-            End::At(_) => return Err("time.limit needs time.after_contact".into()),
-        },
-        "time.dt.cfl" => scene.time.dt = DtChoice::Cfl(positive(v)?),
-        "time.dt.fixed" => scene.time.dt = DtChoice::Fixed(positive(v)?),
-        "output.every" => scene.output.every = Some(positive(v)?),
-        "pulse.force" | "pulse.duration" => match &mut scene.load {
-            Load::Pulse(p) => {
-                if key == "pulse.force" {
-                    p.force = num(v)?
-                } else {
-                    p.duration = positive(v)?
-                }
-            }
-            #[allow(unreachable_patterns)]
-            _ => return Err("the scene has no pulse".into()),
-        },
-        _ if key.starts_with("impactor.") => {
-            let Load::Impactor(i) = &mut scene.load else {
-                return Err("the scene has no impactor".into());
-            };
-            match &key["impactor.".len()..] {
-                "mass" => i.mass = positive(v)?,
-                "velocity" => i.velocity = positive(v)?,
-                "nose_radius" => i.nose_radius = positive(v)?,
-                "indentation_datum" => i.indentation_datum = mid_span(v)?,
-                "force_node" => i.force_node = mid_span(v)?,
-                "contact_law.paper.length_unit" => {
-                    i.contact_law = ContactLawChoice::Paper {
-                        length_unit: positive(v)?,
-                    }
-                }
-                "contact_law.johnson.datum_depth" => {
-                    i.contact_law = ContactLawChoice::Johnson {
-                        datum_depth: positive(v)?,
-                    }
-                }
-                o => return Err(format!("unknown impactor key {o:?}")),
-            }
-        }
-        _ => return Err("unknown override key".into()),
-    }
-    Ok(())
 }
 
 /// A refined copy of a scene: `mesh` multiplies nx and ny by `level` (the step follows the

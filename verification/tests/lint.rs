@@ -223,3 +223,47 @@ fn malformed_case_files_give_file_line_column() {
     let e = parse_error("id: x\ntitle: y\n");
     assert!(e.contains("cases/x/case.yaml"), "{e}");
 }
+
+/// One scene language: a case's `set:` override goes through the solver's own validation
+/// (reference: the solver's rule for `time.dt.cfl`, "must lie in (0, 1]").
+#[test]
+fn an_override_the_scene_rules_refuse_is_refused_with_the_solvers_message() {
+    let scene = include_str!("../scenes/example-elastic.yaml");
+    let yaml = GOOD.replace(
+        "  law: {builtin: hertz-law}\n",
+        "  law: {builtin: hertz-law}\n  fast: {file: scene.yaml, set: {time.dt.cfl: 1.5}}\n",
+    );
+    let root = scratch(&yaml, true);
+    let dir = root.join("verification/cases/suite/case");
+    std::fs::write(dir.join("scene.yaml"), scene).unwrap();
+    let (cases, errors) = load_cases(&root.join("verification/cases"));
+    assert!(errors.is_empty(), "{errors:?}");
+    let refused = impact_verification::jobs::case_jobs(&cases[0]).unwrap_err();
+    let accepted = {
+        std::fs::write(
+            dir.join("case.yaml"),
+            yaml.replace("time.dt.cfl: 1.5", "time.dt.cfl: 0.5, mesh.element: q4-1pt"),
+        )
+        .unwrap();
+        let (cases, _) = load_cases(&root.join("verification/cases"));
+        impact_verification::jobs::case_jobs(&cases[0])
+    };
+    let _ = std::fs::remove_dir_all(root);
+    for part in [
+        "case.yaml:",
+        "override time.dt.cfl = 1.5",
+        "time.dt.cfl = 1.5: must lie in (0, 1] (fraction of the stable step)",
+    ] {
+        assert!(refused.contains(part), "{refused:?} lacks {part:?}");
+    }
+    let jobs = accepted.unwrap();
+    let Some(impact_verification::jobs::Job::Scene { scene, .. }) = jobs.get("fast") else {
+        panic!("no scene job `fast`");
+    };
+    assert_eq!(
+        scene.time.dt,
+        impact_solver::scene::DtChoice::Cfl(0.5),
+        "the override is applied"
+    );
+    assert_eq!(scene.mesh.element, impact_solver::scene::ElementKind::Q4OnePoint);
+}
