@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -13,11 +12,15 @@ class SceneError(ValueError):
     pass
 
 
+ENDS = ("clamped", "roller", "slider")
+
+
 @dataclass
 class Plate:
     length: float
     width: float
     thickness: float
+    ends: str = "clamped"     # clamped: u_x = u_y = 0 | roller: u_x = 0 | slider: u_y = 0
 
 
 @dataclass
@@ -104,10 +107,18 @@ class Scene:
     output: Output
 
 
-def _warn_unknown(d: dict, known: set[str], where: str) -> None:
-    for key in d:
-        if key not in known:
-            print(f"indep_fe: warning: unknown key '{where}.{key}' ignored", file=sys.stderr)
+def _refuse_unknown(d: dict, known: set[str], where: str) -> None:
+    """Unknown keys are refused, as the Rust scene parser does (never silently ignored)."""
+    unknown = sorted(str(k) for k in d if k not in known)
+    if unknown:
+        raise SceneError(f"unknown key '{where}.{unknown[0]}' (known: {', '.join(sorted(known))})")
+
+
+def _refuse_unsupported(d: dict, keys: set[str], where: str) -> None:
+    """Keys of the scene contract this independent solver does not implement: refused, so a
+    comparison never runs a different problem than the one written."""
+    for key in sorted(keys & set(d)):
+        raise SceneError(f"'{where}.{key}' is not supported by indep_fe")
 
 
 def _req(d: dict, key: str, where: str):
@@ -133,16 +144,20 @@ def _one_of(d, where: str) -> tuple[str, object]:
 def parse_scene(data: dict) -> Scene:
     if not isinstance(data, dict):
         raise SceneError("scene must be a YAML mapping")
-    _warn_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
-                  "scene")
+    _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
+                    "scene")
 
     p = _req(data, "plate", "scene")
+    _refuse_unknown(p, {"length", "width", "thickness", "ends"}, "plate")
+    ends = str(p.get("ends", "clamped"))
+    if ends not in ENDS:
+        raise SceneError(f"plate.ends must be {' | '.join(ENDS)}, got {ends}")
     plate = Plate(_pos(_req(p, "length", "plate"), "plate.length"),
                   _pos(_req(p, "width", "plate"), "plate.width"),
-                  _pos(_req(p, "thickness", "plate"), "plate.thickness"))
+                  _pos(_req(p, "thickness", "plate"), "plate.thickness"), ends)
 
     m = _req(data, "material", "scene")
-    _warn_unknown(m, {"density", "youngs_modulus", "poisson_ratio", "plasticity"}, "material")
+    _refuse_unknown(m, {"density", "youngs_modulus", "poisson_ratio", "plasticity"}, "material")
     nu = float(_req(m, "poisson_ratio", "material"))
     if not (-1.0 < nu < 0.5):
         raise SceneError(f"material.poisson_ratio must be in (-1, 0.5), got {nu}")
@@ -150,7 +165,7 @@ def parse_scene(data: dict) -> Scene:
     plast = None
     if m.get("plasticity") is not None:
         pl = m["plasticity"]
-        _warn_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
+        _refuse_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
         sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
         plast = Plasticity(yield_stress=sy0)
         hard = _req(pl, "hardening", "material.plasticity")
@@ -182,7 +197,10 @@ def parse_scene(data: dict) -> Scene:
     material = Material(_pos(_req(m, "density", "material"), "material.density"), E, nu, plast)
 
     me = _req(data, "mesh", "scene")
-    _warn_unknown(me, {"nx", "ny", "element", "model", "grading", "hourglass"}, "mesh")
+    _refuse_unknown(me, {"nx", "ny", "element", "model", "grading", "hourglass", "distortion"},
+                    "mesh")
+    if float(me.get("distortion", 0.0)) != 0.0:
+        _refuse_unsupported(me, {"distortion"}, "mesh")
     mesh = MeshSpec(int(_req(me, "nx", "mesh")), int(_req(me, "ny", "mesh")),
                     str(me.get("element", "q4-sri")), str(me.get("model", "half")),
                     float(me.get("grading", 1.0)), float(me.get("hourglass", 0.05)))
@@ -200,12 +218,14 @@ def parse_scene(data: dict) -> Scene:
         raise SceneError("mesh.hourglass must be >= 0")
 
     load = _req(data, "load", "scene")
+    _refuse_unknown(load, {"impactor", "pulse", "traction"}, "load")
+    _refuse_unsupported(load, {"traction"}, "load")
     impactor = pulse = None
     if ("impactor" in load) == ("pulse" in load):
         raise SceneError("load must have exactly one of 'impactor' or 'pulse'")
     if "impactor" in load:
         im = load["impactor"]
-        _warn_unknown(im, {"mass", "velocity", "nose_radius", "youngs_modulus", "poisson_ratio",
+        _refuse_unknown(im, {"mass", "velocity", "nose_radius", "youngs_modulus", "poisson_ratio",
                            "contact_law", "indentation_datum", "force_node"}, "load.impactor")
         kind, val = _one_of(_req(im, "contact_law", "load.impactor"), "load.impactor.contact_law")
         if kind == "paper":
@@ -229,12 +249,12 @@ def parse_scene(data: dict) -> Scene:
                             isnu, law, datum, fnode if fnode is not None else datum)
     else:
         pu = load["pulse"]
-        _warn_unknown(pu, {"force", "duration"}, "load.pulse")
+        _refuse_unknown(pu, {"force", "duration"}, "load.pulse")
         pulse = Pulse(float(_req(pu, "force", "load.pulse")),
                       _pos(_req(pu, "duration", "load.pulse"), "load.pulse.duration"))
 
     t = _req(data, "time", "scene")
-    _warn_unknown(t, {"end", "dt", "limit", "allow_unstable_dt"}, "time")
+    _refuse_unknown(t, {"end", "dt", "limit", "allow_unstable_dt"}, "time")
     ts = TimeSpec(limit=_pos(t.get("limit", 0.05), "time.limit"),
                   allow_unstable_dt=bool(t.get("allow_unstable_dt", False)))
     end = _req(t, "end", "time")
@@ -254,7 +274,9 @@ def parse_scene(data: dict) -> Scene:
         raise SceneError("time.dt must be {cfl: c} or {fixed: dt}")
 
     o = data.get("output") or {}
-    _warn_unknown(o, {"every", "probes", "fields"}, "output")
+    _refuse_unknown(o, {"every", "probes", "fields"}, "output")
+    for name, pr in (o.get("probes") or {}).items():
+        _refuse_unknown(pr, {"x", "y"}, f"output.probes.{name}")
     probes = [Probe(str(name), float(_req(pr, "x", f"output.probes.{name}")),
                     float(_req(pr, "y", f"output.probes.{name}")))
               for name, pr in (o.get("probes") or {}).items()]
