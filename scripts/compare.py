@@ -6,21 +6,14 @@ metrics; the wall time of each side and their ratio. Exit status 1 when --tol is
 See `scripts/compare.py --help` and scripts/README.md. Runs with <repo>/.venv (re-executes
 itself there when numpy is missing).
 """
-import os
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-try:
-    import numpy  # noqa: F401
-except ImportError:
-    venv = HERE.parent / ".venv"
-    venv_python = venv / "bin" / "python"
-    if venv_python.exists() and Path(sys.prefix).resolve() != venv.resolve():
-        os.execv(str(venv_python), [str(venv_python), __file__, *sys.argv[1:]])
-    sys.exit("compare.py: numpy missing: run scripts/setup-venv.sh first")
-
 sys.path.insert(0, str(HERE))
+import use_venv  # noqa: E402
+
+use_venv.ensure(__file__, ["numpy"])
 from indep_fe.compare import main  # noqa: E402
 
 if __name__ == "__main__":

@@ -20,13 +20,10 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-try:
-    import numpy  # noqa: F401
-except ImportError:
-    venv = ROOT / ".venv"
-    if (venv / "bin" / "python").exists() and Path(sys.prefix).resolve() != venv.resolve():
-        os.execv(str(venv / "bin" / "python"), [str(venv / "bin" / "python"), __file__, *sys.argv[1:]])
-    sys.exit("make-reference-data.py: numpy missing: run scripts/setup-venv.sh first")
+sys.path.insert(0, str(HERE))
+import use_venv  # noqa: E402
+
+use_venv.ensure(__file__, ["numpy"])
 
 import argparse  # noqa: E402
 import datetime  # noqa: E402
@@ -39,7 +36,6 @@ import subprocess  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 
-sys.path.insert(0, str(HERE))
 from indep_fe.compare import column_diffs, read_history, read_summary, summary_diffs  # noqa: E402
 
 DATA = ROOT / "reference-data" / "independent"

@@ -327,7 +327,7 @@ fn slug(s: &str) -> String {
         .collect()
 }
 
-/// Where the reconstruction of the paper's lost data (issue 5, `scripts/reconstruct.py`)
+/// Where the reconstruction of the paper's lost data (issue 5, `scripts/reconstruction/reconstruct.py`)
 /// writes its page, relative to the repository root.
 pub const RECONSTRUCTION_PAGE: &str = "reference-data/paper/reconstruction/report.md";
 

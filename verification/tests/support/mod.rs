@@ -1,5 +1,5 @@
 //! Small fixtures for the report tests: a benchmarks folder shaped like `impact-bench all
-//! --out DIR` writes it, and a reconstruction page shaped like `scripts/reconstruct.py`'s
+//! --out DIR` writes it, and a reconstruction page shaped like `scripts/reconstruction/reconstruct.py`'s
 //! report.md. Made up for the tests (numbers included): never read from the real folders.
 
 #![allow(dead_code)]
@@ -219,9 +219,9 @@ pub fn assert_sections_missing(out: &Path, benchmarks_given: Option<&Path>) {
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         html.contains("<b>Not yet produced:</b>")
-            && html.contains("Run <code>scripts/reconstruct.py</code>")
+            && html.contains("Run <code>scripts/reconstruction/reconstruct.py</code>")
     );
-    assert!(md.contains("**Not yet produced:**") && md.contains("Run `scripts/reconstruct.py`"));
+    assert!(md.contains("**Not yet produced:**") && md.contains("Run `scripts/reconstruction/reconstruct.py`"));
     assert!(
         !html.contains("id=\"recon-") && !md.contains("](reconstruction/"),
         "nothing shown in the page's place"

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Reconstruct the lost plate data of Dokko & Kim (2004) from Tables 1 and 2 (issue 5).
 
-    scripts/reconstruct.py             # search, confirm, report and scenes (~15 min on 2 cores)
-    scripts/reconstruct.py --quick     # smoke test (< 3 min): tiny budget; writes only into
+    scripts/reconstruction/reconstruct.py             # search, confirm, report and scenes (~15 min on 2 cores)
+    scripts/reconstruction/reconstruct.py --quick     # smoke test (< 3 min): tiny budget; writes only into
                                        #   out/reconstruct-quick/
-    scripts/reconstruct.py --report-only   # rewrite the report, tables, plots (and scenes)
+    scripts/reconstruction/reconstruct.py --report-only   # rewrite the report, tables, plots (and scenes)
                                            #   from reference-data/paper/reconstruction/search.json
 
 It drives `impact simulate` (2 runs at a time, subprocesses) and searches, for each reading of
@@ -36,17 +36,11 @@ import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
-try:
-    import numpy  # noqa: F401
-    import scipy  # noqa: F401
-    import yaml  # noqa: F401
-except ImportError:
-    venv = ROOT / ".venv"
-    if (venv / "bin" / "python").exists() and Path(sys.prefix).resolve() != venv.resolve():
-        os.execv(str(venv / "bin" / "python"),
-                 [str(venv / "bin" / "python"), __file__, *sys.argv[1:]])
-    sys.exit("reconstruct.py: numpy/scipy/pyyaml missing: run scripts/setup-venv.sh first")
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE.parent))
+import use_venv  # noqa: E402
+
+use_venv.ensure(__file__, ["numpy", "scipy", "yaml"])
 
 import argparse  # noqa: E402
 import datetime  # noqa: E402
@@ -720,7 +714,7 @@ def main() -> int:
     result = {
         "title": "Reconstruction of the lost plate data of Dokko & Kim (2004)",
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "command": "scripts/reconstruct.py" + (" --quick" if a.quick else ""),
+        "command": "scripts/reconstruction/reconstruct.py" + (" --quick" if a.quick else ""),
         "script_sha256": {f: rc.sha256_file(HERE / f) for f in
                           ("reconstruct.py", "recon_core.py", "recon_report.py")},
         "solver_commit": git("rev-parse", "HEAD"),

@@ -1,4 +1,4 @@
-"""Scene builder, cached parallel runner and residuals for scripts/reconstruct.py.
+"""Scene builder, cached parallel runner and residuals for scripts/reconstruction/reconstruct.py.
 
 A parameter set is a plain dict (see DEFAULTS). `scene(p, ...)` turns it into a scene dict
 for `impact simulate`; `Runner.run_many` runs scenes (`jobs` at a time, default 2), caching
@@ -22,7 +22,7 @@ from pathlib import Path
 import yaml
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
+ROOT = HERE.parents[1]
 PAPER = ROOT / "reference-data" / "paper"
 
 # Fixed by the reconstruction (steel plate, steel impactor). The rest is searched.

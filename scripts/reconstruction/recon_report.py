@@ -15,7 +15,7 @@ from pathlib import Path
 import recon_core as rc
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
+ROOT = HERE.parents[1]
 SCENES = ROOT / "verification" / "scenes"
 
 ROWS = ("elastic", "plastic")
@@ -312,7 +312,7 @@ def scene_header(result: dict, what: str, tolerances: list[str]) -> str:
     lines = [
         f"# {what}",
         "# Dokko & Kim (2004) on the RECONSTRUCTED plate: the paper's Fig. 1 (plate, material, nose",
-        "# radius) is lost; these values were fitted to Tables 1-2 by scripts/reconstruct.py. See",
+        "# radius) is lost; these values were fitted to Tables 1-2 by scripts/reconstruction/reconstruct.py. See",
         "# reference-data/paper/reconstruction/report.md for how, the residuals and the non-uniqueness.",
         f"# Chosen set: L = {p['L'] * 1e3:.1f} mm, W = {p['W'] * 1e3:.1f} mm, h = {p['h'] * 1e3:.2f} mm, "
         f"yield {p['sy'] / 1e6:.1f} MPa, E_t = {p['Et'] / 1e9:.3f} GPa,",
@@ -463,8 +463,8 @@ def provenance_text(result: dict, out: Path) -> str:
     files = sorted(p.name for p in out.iterdir() if p.is_file() and p.name != "PROVENANCE.md")
     sha = {f: rc.sha256_file(out / f) for f in files}
     L = ["# Provenance of `reference-data/paper/reconstruction/`", "",
-         "Everything here is written by `scripts/reconstruct.py` (with `scripts/recon_core.py` "
-         "and `scripts/recon_report.py`) from runs of `impact simulate`. Nothing was edited by "
+         "Everything here is written by `scripts/reconstruction/reconstruct.py` (with `scripts/reconstruction/recon_core.py` "
+         "and `scripts/reconstruction/recon_report.py`) from runs of `impact simulate`. Nothing was edited by "
          "hand.", "",
          "| item | value |", "|---|---|",
          f"| command | `{result['command']}` (run from the repository root with `.venv/bin/python`) |",
@@ -487,7 +487,7 @@ def provenance_text(result: dict, out: Path) -> str:
                  "written) | " + ("none" if not log else "; ".join(x[:110] for x in log)) + " |")
     for f, h in result["script_sha256"].items():
         L.append(f"| scripts/{f} sha256 (at the search) | `{h}` |")
-    L.append(f"| scripts/recon_report.py sha256 (wrote this page) | "
+    L.append(f"| scripts/reconstruction/recon_report.py sha256 (wrote this page) | "
              f"`{result.get('report_writer_sha256', '?')}` |")
     L += [f"| runs executed / from cache | {result['runs']['executed']} / "
           f"{result['runs']['cache_hits']} |",
@@ -584,7 +584,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
 
     A("# Reproducing Dokko & Kim (2004)")
     A("")
-    A("*A page of the V&V report. Written by `scripts/reconstruct.py`; all numbers below come "
+    A("*A page of the V&V report. Written by `scripts/reconstruction/reconstruct.py`; all numbers below come "
       "from `search.json` beside this file. The paper's tables are computed results of the "
       "authors' program: matching them is a code-to-literature comparison, not a validation "
       "against experiment.*")
@@ -1319,7 +1319,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
         ["`PROVENANCE.md`", "script and solver hashes, commit, date, command"]]))
     A("")
     A("Re-run: `scripts/setup-venv.sh && cargo build --release -p impact-verification && "
-      "scripts/reconstruct.py` (about 15 min on 2 cores; `--quick` for a smoke test under 3 min; "
+      "scripts/reconstruction/reconstruct.py` (about 15 min on 2 cores; `--quick` for a smoke test under 3 min; "
       "`--report-only` rewrites this page from `search.json`).")
     A("")
     return "\n".join(L)
