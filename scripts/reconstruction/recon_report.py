@@ -794,7 +794,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       f"Table 1, {rc.T2_MASS / (p['rho'] * p['L'] * p['W'] * p['h']):.2f} in Table 2); "
       f"clamped-beam central stiffness 16 E' W h^3 / L^3 = "
       f"{16 * p['E'] / (1 - p['nu'] ** 2) * p['W'] * p['h'] ** 3 / p['L'] ** 3:.3g} N/m "
-      "(bending only); the paper's own numbers imply about 4.9e8 N/m (NOTES.md); "
+      "(bending only); the paper's own numbers imply about 4.9e8 N/m (reference-data/paper/README.md); "
       f"fully plastic load of the clamped beam 8 M_p / L with M_p = (2/sqrt 3) sigma_y W h^2 / 4: "
       f"{8 * (2 / math.sqrt(3)) * p['sy'] * p['W'] * p['h'] ** 2 / 4 / p['L'] / 1e3:.0f} kN.")
     A("")
@@ -991,7 +991,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A("- *The tie is broken by a prior, not by the data*: the search length is the round "
       f"L = {p['L'] * 1e3:.0f} mm, which with W = {p['W'] * 1e3:.0f} mm is close to a square "
       "plate, the most natural reading of Fig. 1's 'rectangular plate with length L, width W' "
-      "(and the plate NOTES.md started from); a shorter member needs a much wider plate "
+      "(and the first-guess plate of reference-data/paper/README.md); a shorter member needs a much wider plate "
       "(W L^3 fixed). Neighbouring members of the family reproduce the tables about as well, "
       "and the scenes say so.")
     if yt:

@@ -115,7 +115,7 @@ def test_energy_balance_small_elastic_impact():
 
 
 def test_force_and_datum_pairing_energy():
-    """NOTES.md: force on the top node with alpha from the mid-plane does not conserve energy,
+    """reference-data/paper/README.md: force on the top node with alpha from the mid-plane does not conserve energy,
     a matched pair does (elasto-plastic, where the through-thickness crush is large)."""
     base = {"material.plasticity": PLASTIC, "time.end": 6e-4}
     top = simulate(scene(**base, **{"load.impactor.indentation_datum": "top-surface"})).summary

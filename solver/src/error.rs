@@ -3,8 +3,9 @@
 
 use std::path::PathBuf;
 
-/// Where a value sits in a scene file (1-based line and column; 0 when unknown).
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Where a value sits in a file, `file:line:column` (1-based line and column; line 0 = the
+/// file only). Scenes and the harness's case files use this one type.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
 pub struct SourceLocation {
     pub file: PathBuf,
     pub line: u64,

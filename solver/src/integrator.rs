@@ -555,7 +555,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                     let cause = if b.required > scene.plate.thickness {
                         "an indentation beyond the plate thickness: the run has gone unstable"
                     } else {
-                        "see NOTES: eq. (4) has a maximum at P r chi = l^2; use a larger length_unit, the johnson law, a softer impact or a smaller dt"
+                        "eq. (4) has a maximum at P r chi = l^2 (reference-data/paper/README.md); use a larger length_unit, the johnson law, a softer impact or a smaller dt"
                     };
                     Error::Run {
                         step: n + 1,

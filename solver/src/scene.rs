@@ -631,11 +631,7 @@ const CFL_UNCHECKED: Rule = Rule {
 
 impl Validator<'_> {
     fn at<T>(&self, spanned: &Spanned<T>) -> SourceLocation {
-        SourceLocation {
-            file: self.source.to_path_buf(),
-            line: spanned.referenced.line(),
-            column: spanned.referenced.column(),
-        }
+        SourceLocation::of(self.source, spanned)
     }
 
     fn check(&self, value: &Num, field: &str, rule: Rule) -> Result<f64> {
@@ -1029,6 +1025,15 @@ impl SourceLocation {
             file: path.to_path_buf(),
             line: 0,
             column: 0,
+        }
+    }
+
+    /// Where the parser found `spanned` in `path`.
+    pub fn of<T>(path: &Path, spanned: &Spanned<T>) -> SourceLocation {
+        SourceLocation {
+            file: path.to_path_buf(),
+            line: spanned.referenced.line(),
+            column: spanned.referenced.column(),
         }
     }
 }

@@ -114,7 +114,7 @@ fn half_model_equals_full_model() {
     }
 }
 
-/// NOTES: force on the top node with the indentation read at the mid-plane counts the
+/// reference-data/paper/README.md: force on the top node with the indentation read at the mid-plane counts the
 /// local through-thickness compression twice; the energy balance must show it, while the
 /// consistent pairings (both at the mid-plane, both at the top) balance.
 #[test]

@@ -7,46 +7,14 @@
 //! and enforced by [`crate::lint`], which also names the line and column.
 
 use std::collections::BTreeMap;
-use std::fmt;
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
-/// Where something is written: `file:line:column` (line 0 = file only).
-#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
-pub struct Loc {
-    pub file: PathBuf,
-    pub line: u64,
-    pub column: u64,
-}
-
-impl fmt::Display for Loc {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.line == 0 {
-            write!(f, "{}", self.file.display())
-        } else {
-            write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
-        }
-    }
-}
-
-impl Loc {
-    pub fn file(path: &Path) -> Loc {
-        Loc {
-            file: path.to_path_buf(),
-            line: 0,
-            column: 0,
-        }
-    }
-    pub fn of<T>(path: &Path, s: &Spanned<T>) -> Loc {
-        Loc {
-            file: path.to_path_buf(),
-            line: s.referenced.line(),
-            column: s.referenced.column(),
-        }
-    }
-}
+/// Where something is written: `file:line:column` (line 0 = file only); the solver's
+/// [`SourceLocation`](impact_solver::error::SourceLocation), one type for scenes and cases.
+pub use impact_solver::error::SourceLocation as Loc;
 
 /// A case file that cannot be read or parsed.
 #[derive(Debug, thiserror::Error)]

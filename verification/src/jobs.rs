@@ -312,9 +312,10 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
                 node_name(i.indentation_datum),
                 node_name(i.force_node)
             ),
-            // Load kinds added to the solver later are described by their Debug form.
-            #[allow(unreachable_patterns)]
-            other => format!("{other:?}"),
+            Load::Traction(t) => format!(
+                "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",
+                t.normal, t.shear, t.duration
+            ),
         },
     );
     m.insert(

@@ -5,7 +5,6 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -616,5 +615,3 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
     }
     Ok(())
 }
-
-pub type Shared<T> = Arc<T>;
