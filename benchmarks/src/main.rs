@@ -15,8 +15,8 @@ use clap::{Parser, Subcommand};
 struct Cli {
     #[command(subcommand)]
     command: Command,
-    /// Output folder.
-    #[arg(long, global = true, default_value = "out/benchmarks")]
+    /// Output folder (where `impact verify --report` looks for the benchmarks).
+    #[arg(long, global = true, default_value = "out/verification/benchmarks")]
     out: PathBuf,
     /// Small sizes (for CI): fewer levels, repeats and cases.
     #[arg(long, global = true)]

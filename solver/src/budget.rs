@@ -119,7 +119,7 @@ impl Estimate {
 }
 
 /// Smallest element length along x, m (mid-span for graded meshes).
-fn smallest_element_length(scene: &Scene) -> f64 {
+pub(crate) fn smallest_element_length(scene: &Scene) -> f64 {
     let half_elements = match scene.mesh.model {
         Model::Half => scene.mesh.nx,
         Model::Full => scene.mesh.nx / 2,

@@ -469,8 +469,9 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 step: n,
                 time_s: t,
                 what: format!(
-                    "unstable: the energy balance error reached {balance_error:.3e}, above {bound} (energy grows without a source: total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {dt:.6e} s is {:.3} of the stable estimate",
-                    energies.total(), totals.initial_energy.total(), external_work, dt / dt_critical
+                    "unstable: the energy balance error reached {balance_error:.3e}, above {bound} (energy grows without a source: total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {dt:.6e} s is {:.3} of the stable estimate{}",
+                    energies.total(), totals.initial_energy.total(), external_work, dt / dt_critical,
+                    crate::contact_failure::light_impactor_cause(scene)
                 ),
             });
         }
@@ -546,24 +547,25 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             u[d] += dt * v[d];
         }
         // 5: contact force at n + 1 (eq. 21) and the impactor (eqs. 19-20).
-        let next_force = match (&mut impactor, &law) {
-            (Some(imp), Some(law)) => {
+        let next_force = match (&mut impactor, &law, impactor_spec) {
+            (Some(imp), Some(law), Some(spec)) => {
                 let delta_c = -u[2 * datum + 1];
                 let alpha_free = imp.displacement_after(dt, force, 0.0) - delta_c;
                 let extra = dt * dt / (6.0 * imp.mass);
-                let f1 = solve_contact_force(law, extra, alpha_free).map_err(|b| {
-                    let cause = if b.required > scene.plate.thickness {
-                        "an indentation beyond the plate thickness: the run has gone unstable"
-                    } else {
-                        "eq. (4) has a maximum at P r chi = l^2 (reference-data/paper/README.md); use a larger length_unit, the johnson law, a softer impact or a smaller dt"
+                let f1 = solve_contact_force(law, extra, alpha_free).map_err(|beyond| {
+                    let failure = crate::contact_failure::Failure {
+                        scene,
+                        impactor: spec,
+                        law,
+                        beyond,
+                        balance_error,
+                        dt,
+                        dt_critical,
                     };
                     Error::Run {
                         step: n + 1,
                         time_s: t + dt,
-                        what: format!(
-                            "the contact law has no root: the step needs an indentation of {:.6e} m but the law's maximum gives {:.6e} m at a force of {:.6e} N ({cause}; dt = {dt:.6e} s is {:.3} of the stable estimate)",
-                            b.required, b.available, b.max_force, dt / dt_critical
-                        ),
+                        what: failure.explain(),
                     }
                 })?;
                 imp.advance(dt, force, f1);

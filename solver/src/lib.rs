@@ -9,6 +9,7 @@
 pub mod assembly;
 pub mod budget;
 pub mod contact;
+pub mod contact_failure;
 pub mod element;
 pub mod energy;
 pub mod error;
@@ -25,6 +26,7 @@ pub mod progress;
 pub mod scene;
 pub mod stiffness;
 pub mod summary;
+pub mod yaml_field;
 
 use std::time::Instant;
 

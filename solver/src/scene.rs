@@ -570,7 +570,10 @@ fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T>
                 line,
                 column,
             },
-            message: first_line_without_location(&e.to_string()),
+            message: crate::yaml_field::explain(
+                &first_line_without_location(&e.to_string()),
+                &crate::yaml_field::field_at(text, line, column),
+            ),
         }
     })
 }

@@ -128,6 +128,17 @@ fn a_run_that_fails_midway_leaves_nothing_behind() {
         .unwrap_err()
         .to_string();
     assert_mentions(&e, &["run stopped at step", "no root", "maximum"]);
+    // The message names the law's maximum force, the input that exceeds it and the
+    // alternative (issue 13).
+    assert_mentions(
+        &e,
+        &[
+            "with length_unit 0.00001 m",
+            "its maximum is",
+            "18 kg at 10 m/s carries 9.000e2 J",
+            "contact_law: {johnson: {datum_depth: 0.01}}",
+        ],
+    );
     assert!(!out.exists());
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
 }
@@ -147,7 +158,9 @@ fn overrides_obey_the_scene_rules_and_name_the_override() {
     };
     let plain = Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap();
     assert_eq!(with(&[]).unwrap(), plain);
-    let e = with(&[("time.dt.cfl", 1.5.into())]).unwrap_err().to_string();
+    let e = with(&[("time.dt.cfl", 1.5.into())])
+        .unwrap_err()
+        .to_string();
     assert_mentions(
         &e,
         &[
@@ -163,7 +176,9 @@ fn overrides_obey_the_scene_rules_and_name_the_override() {
         .unwrap_err()
         .to_string();
     assert_mentions(&e, &["override load.impactor.mas", "unknown field `mas`"]);
-    let e = with(&[("mesh.element", "q5".into())]).unwrap_err().to_string();
+    let e = with(&[("mesh.element", "q5".into())])
+        .unwrap_err()
+        .to_string();
     assert_mentions(&e, &["override mesh.element", "q5", "q4-sri"]);
     let s = with(&[
         ("time.dt.fixed", 1e-8.into()),
@@ -187,4 +202,45 @@ fn overrides_obey_the_scene_rules_and_name_the_override() {
     back.mesh.nx = plain.mesh.nx;
     back.load = plain.load.clone();
     assert_eq!(back, plain, "nothing else changes");
+}
+
+#[test]
+fn yaml_type_errors_name_the_field_and_the_expected_type() {
+    let e = error_for(|s| s.replace("nx: 80", "nx: abc"));
+    assert_mentions(&e, &["bad.yaml:8:12", "mesh.nx: expected an integer"]);
+    let e = error_for(|s| s.replace("nx: 80", "nx: 8.5"));
+    assert_mentions(&e, &["mesh.nx: expected an integer"]);
+    let e = error_for(|s| s.replace("density: 7850.0", "density: heavy"));
+    assert_mentions(
+        &e,
+        &["bad.yaml:5:12", "material.density: expected a number"],
+    );
+    let e = error_for(|s| s.replace("  # instead of impactor:  pulse", "  pulse"));
+    assert_mentions(&e, &["load.pulse: load takes exactly one kind", "keep one"]);
+    let e = error_for(|s| s.replace("mass: 18.0 ", "mass: [1] "));
+    assert_mentions(&e, &["load.impactor.mass: expected a single value"]);
+}
+
+#[test]
+fn a_feather_weight_impactor_is_reported_as_the_cause_of_the_instability() {
+    let dir = scratch("light");
+    let scene = dir.join("scene.yaml");
+    std::fs::write(
+        &scene,
+        EXAMPLE
+            .replace("mass: 18.0 ", "mass: 1.0e-12 ")
+            .replace("nx: 80, ny: 16", "nx: 20, ny: 4"),
+    )
+    .unwrap();
+    let e = simulate_to_dir(&scene, &dir.join("out"), false)
+        .unwrap_err()
+        .to_string();
+    assert_mentions(
+        &e,
+        &[
+            "unstable",
+            "impactor's mass 1.000e-12 kg",
+            "load.impactor.mass",
+        ],
+    );
 }

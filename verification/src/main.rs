@@ -56,11 +56,11 @@ enum Command {
         /// Only checks whose suite/case/check name contains this text.
         #[arg(long)]
         filter: Option<String>,
-        /// Parallel runs (default: the number of cores).
-        #[arg(long)]
-        jobs: Option<usize>,
-        /// Output folder.
-        #[arg(long, default_value = "out/verify")]
+        /// Parallel runs, >= 1 (default: the number of cores).
+        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+        jobs: Option<u16>,
+        /// Output folder (the README's place for the report).
+        #[arg(long, default_value = "out/verification")]
         out: PathBuf,
         /// Leave out the cases marked heavy (what `cargo test` runs).
         #[arg(long)]
@@ -83,6 +83,7 @@ enum Command {
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
     /// reasons, provenance of reference files.
     Lint {
+        /// Repository root (default: found from the current folder).
         #[arg(long)]
         root: Option<PathBuf>,
     },
@@ -243,7 +244,7 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
 fn verify(
     selectors: Vec<String>,
     filter: Option<String>,
-    jobs: Option<usize>,
+    jobs: Option<u16>,
     out: PathBuf,
     light: bool,
     report: Option<ReportOptions>,
@@ -254,7 +255,10 @@ fn verify(
         Err(c) => return c,
     };
     let started = std::time::Instant::now();
-    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let jobs = jobs.map_or_else(
+        || std::thread::available_parallelism().map_or(1, |n| n.get()),
+        usize::from,
+    );
     let opts = Options {
         selectors,
         filter,

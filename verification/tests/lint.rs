@@ -265,5 +265,8 @@ fn an_override_the_scene_rules_refuse_is_refused_with_the_solvers_message() {
         impact_solver::scene::DtChoice::Cfl(0.5),
         "the override is applied"
     );
-    assert_eq!(scene.mesh.element, impact_solver::scene::ElementKind::Q4OnePoint);
+    assert_eq!(
+        scene.mesh.element,
+        impact_solver::scene::ElementKind::Q4OnePoint
+    );
 }

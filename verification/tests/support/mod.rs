@@ -221,7 +221,10 @@ pub fn assert_sections_missing(out: &Path, benchmarks_given: Option<&Path>) {
         html.contains("<b>Not yet produced:</b>")
             && html.contains("Run <code>scripts/reconstruction/reconstruct.py</code>")
     );
-    assert!(md.contains("**Not yet produced:**") && md.contains("Run `scripts/reconstruction/reconstruct.py`"));
+    assert!(
+        md.contains("**Not yet produced:**")
+            && md.contains("Run `scripts/reconstruction/reconstruct.py`")
+    );
     assert!(
         !html.contains("id=\"recon-") && !md.contains("](reconstruction/"),
         "nothing shown in the page's place"
