@@ -6,11 +6,12 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use impact_solver::element::Formulation;
 use impact_solver::integrator::PlateModel;
-use impact_solver::material::{ConstitutiveModel, Elastic, VonMises};
+use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
-use impact_solver::scene::End;
+use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::scene::{ElementKind, End};
 use impact_solver::{simulate, Quiet, Scene};
 
 const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
@@ -19,67 +20,57 @@ fn scene() -> Scene {
     Scene::from_yaml(PLASTIC, Path::new("paper-plastic.yaml")).unwrap()
 }
 
-fn bench_model<F: Formulation, M: ConstitutiveModel>(
-    c: &mut Criterion,
-    name: &str,
-    mut model: PlateModel<F, M>,
-    mesh: &PlateMesh,
-) {
-    // Uniform strain 1e-2 (~12x the yield strain 176 MPa / 207 GPa = 8.5e-4), reversed every call: every point yields.
-    let u: Vec<f64> = mesh
-        .mesh
-        .coords
-        .iter()
-        .flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]])
-        .collect();
-    let minus: Vec<f64> = u.iter().map(|x| -x).collect();
-    let mut f = vec![0.0; u.len()];
-    let mut flip = false;
-    let mut group = c.benchmark_group("element-kernel");
-    group.throughput(Throughput::Elements(model.formulation.n_elements() as u64));
-    group.bench_function(name, |b| {
-        b.iter(|| {
-            flip = !flip;
-            model.internal_forces(if flip { &u } else { &minus }, &mut f)
-        })
-    });
-    group.finish();
+/// Benchmarks the internal forces of whatever model the factory built.
+struct KernelBench<'a, 'c> {
+    c: &'c mut Criterion,
+    name: String,
+    mesh: &'a PlateMesh,
+}
+
+impl UseModel for KernelBench<'_, '_> {
+    type Output = ();
+    fn use_model<F: Formulation, M: ConstitutiveModel>(self, mut model: PlateModel<F, M>) {
+        // Uniform strain 1e-2 (~12x the yield strain 176 MPa / 207 GPa = 8.5e-4), reversed every call: every point yields.
+        let u: Vec<f64> = self
+            .mesh
+            .mesh
+            .coords
+            .iter()
+            .flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]])
+            .collect();
+        let minus: Vec<f64> = u.iter().map(|x| -x).collect();
+        let mut f = vec![0.0; u.len()];
+        let mut flip = false;
+        let mut group = self.c.benchmark_group("element-kernel");
+        group.throughput(Throughput::Elements(model.formulation.n_elements() as u64));
+        group.bench_function(&self.name, |b| {
+            b.iter(|| {
+                flip = !flip;
+                model.internal_forces(if flip { &u } else { &minus }, &mut f)
+            })
+        });
+        group.finish();
+    }
 }
 
 fn kernels(c: &mut Criterion) {
-    let s = scene();
-    let mesh = PlateMesh::new(&s.plate, &s.mesh);
-    let (w, rho) = (s.plate.width, s.material.density);
-    let elastic = Elastic::new(s.material.youngs_modulus, s.material.poisson_ratio);
-    let plastic = VonMises::new(&s.material).unwrap();
-    macro_rules! all {
-        ($name:literal, $f:expr) => {
-            bench_model(
-                c,
-                concat!($name, "/elastic"),
-                PlateModel::new($f, elastic, &mesh, rho).with_linear_kernel(&mesh.mesh, &elastic),
-                &mesh,
-            );
-            bench_model(
-                c,
-                concat!($name, "/elastic-stress-path"),
-                PlateModel::new($f, elastic, &mesh, rho),
-                &mesh,
-            );
-            bench_model(
-                c,
-                concat!($name, "/plastic-all-yielding"),
-                PlateModel::new($f, plastic.clone(), &mesh, rho),
-                &mesh,
-            );
-        };
+    for element in ElementKind::ALL {
+        let mut s = scene();
+        s.mesh.element = element;
+        let mesh = PlateMesh::new(&s.plate, &s.mesh);
+        for (material, kernel) in [
+            ("elastic", Kernel::ElasticStiffnessMatrix),
+            ("elastic-stress-path", Kernel::ElasticStressPath),
+            ("plastic-all-yielding", Kernel::Plastic),
+        ] {
+            let bench = KernelBench {
+                c: &mut *c,
+                name: format!("{}/{material}", element.name()),
+                mesh: &mesh,
+            };
+            model::build(&s, &mesh, kernel, bench).unwrap();
+        }
     }
-    all!("q4-full", FullQ4::new(&mesh.mesh, w).unwrap());
-    all!("q4-sri", SelectiveQ4::new(&mesh.mesh, w).unwrap());
-    all!(
-        "q4-1pt",
-        OnePointQ4::new(&mesh.mesh, w, s.mesh.hourglass, elastic.p_modulus()).unwrap()
-    );
 }
 
 fn whole_steps(c: &mut Criterion) {

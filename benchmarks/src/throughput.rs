@@ -5,10 +5,11 @@
 use std::path::Path;
 use std::time::Instant;
 
-use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use impact_solver::element::Formulation;
 use impact_solver::integrator::PlateModel;
-use impact_solver::material::{ConstitutiveModel, Elastic, VonMises};
+use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
+use impact_solver::model::{self, Kernel, UseModel};
 use impact_solver::scene::ElementKind;
 
 use crate::common::{markdown_table, paper, timed, write_csv};
@@ -54,9 +55,18 @@ fn kernel_ns<F: Formulation, M: ConstitutiveModel>(
     1e9 * best / (calls * model.formulation.n_elements()) as f64
 }
 
-/// Whether the solver uses precomputed stiffness matrices for this element when elastic.
-fn stiffness_matrix_pays<F: Formulation>(_: &F) -> bool {
-    F::STIFFNESS_MATRIX_PAYS
+/// Times the internal forces of whatever model the factory built.
+struct KernelTimer<'a> {
+    u: &'a [f64],
+    calls: usize,
+    reps: usize,
+}
+
+impl UseModel for KernelTimer<'_> {
+    type Output = f64;
+    fn use_model<F: Formulation, M: ConstitutiveModel>(self, mut model: PlateModel<F, M>) -> f64 {
+        kernel_ns(&mut model, self.u, self.calls, self.reps)
+    }
 }
 
 struct Case {
@@ -65,62 +75,20 @@ struct Case {
 }
 
 fn measure(case: &Case, quick: bool) -> f64 {
-    let scene = paper(case.material != "elastic");
+    let mut scene = paper(case.material != "elastic");
+    scene.mesh.element = case.element;
     let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
-    let (w, m) = (scene.plate.width, &scene.material);
-    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
     let (calls, reps) = if quick { (20, 2) } else { (400, 5) };
     // Strain 1e-2 is 12x the yield strain of the plastic paper scene (176 MPa / 207 GPa): every point yields.
     let u = uniform_strain(&mesh, 1e-2);
-    macro_rules! go {
-        ($f:expr) => {{
-            let f = $f;
-            let uses_matrix = stiffness_matrix_pays(&f);
-            match case.material {
-                "elastic-stiffness-matrix" => kernel_ns(
-                    &mut PlateModel::new(f, elastic, &mesh, m.density)
-                        .with_linear_kernel(&mesh.mesh, &elastic),
-                    &u,
-                    calls,
-                    reps,
-                ),
-                "elastic" if uses_matrix => kernel_ns(
-                    &mut PlateModel::new(f, elastic, &mesh, m.density)
-                        .with_linear_kernel(&mesh.mesh, &elastic),
-                    &u,
-                    calls,
-                    reps,
-                ),
-                "elastic" | "elastic-stress-path" => kernel_ns(
-                    &mut PlateModel::new(f, elastic, &mesh, m.density),
-                    &u,
-                    calls,
-                    reps,
-                ),
-                _ => kernel_ns(
-                    &mut PlateModel::new(
-                        f,
-                        VonMises::new(m).expect("plastic paper scene"),
-                        &mesh,
-                        m.density,
-                    ),
-                    &u,
-                    calls,
-                    reps,
-                ),
-            }
-        }};
-    }
-    match case.element {
-        ElementKind::Q4Full => go!(FullQ4::new(&mesh.mesh, w).expect("valid mesh")),
-        ElementKind::Q4Sri => go!(SelectiveQ4::new(&mesh.mesh, w).expect("valid mesh")),
-        ElementKind::Q4OnePoint => {
-            go!(
-                OnePointQ4::new(&mesh.mesh, w, scene.mesh.hourglass, elastic.p_modulus())
-                    .expect("valid mesh")
-            )
-        }
-    }
+    let kernel = match case.material {
+        "elastic" => Kernel::Elastic,
+        "elastic-stiffness-matrix" => Kernel::ElasticStiffnessMatrix,
+        "elastic-stress-path" => Kernel::ElasticStressPath,
+        _ => Kernel::Plastic,
+    };
+    let timer = KernelTimer { u: &u, calls, reps };
+    model::build(&scene, &mesh, kernel, timer).expect("the paper scenes build every model")
 }
 
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {

@@ -4,7 +4,8 @@
 //!
 //! Read `ALGORITHM.md` (next to this crate's `Cargo.toml`) for the exact contract. Modules:
 //! [`scene`] (input), [`mesh`], [`element`], [`material`], [`contact`], [`impactor`],
-//! [`integrator`] (the time loop), [`energy`], [`summary`], [`output`] (files).
+//! [`model`] (element x material x kernel), [`integrator`] (the time loop), [`energy`],
+//! [`summary`], [`output`] (files).
 
 pub mod assembly;
 pub mod budget;
@@ -19,6 +20,7 @@ pub mod interrupt;
 pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod model;
 pub mod out_dir;
 pub mod output;
 pub mod overrides;
@@ -35,11 +37,10 @@ pub use integrator::{History, Observer, Quiet};
 pub use scene::Scene;
 pub use summary::Summary;
 
-use element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use element::Formulation;
 use integrator::PlateModel;
-use material::{ConstitutiveModel, Elastic, VonMises};
+use material::ConstitutiveModel;
 use mesh::PlateMesh;
-use scene::ElementKind;
 
 /// Everything a run produces in memory.
 #[derive(Debug, Clone)]
@@ -53,21 +54,13 @@ pub struct Outcome {
 pub fn simulate(scene: &Scene, observer: &mut dyn Observer) -> Result<Outcome> {
     let started = Instant::now();
     let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
-    let width = scene.plate.width;
-    let elastic = Elastic::new(scene.material.youngs_modulus, scene.material.poisson_ratio);
     let run = Run {
         scene,
         mesh: &mesh,
         started,
+        observer,
     };
-    let (summary, history) = match scene.mesh.element {
-        ElementKind::Q4Full => run.with_formulation(FullQ4::new(&mesh.mesh, width)?, observer),
-        ElementKind::Q4Sri => run.with_formulation(SelectiveQ4::new(&mesh.mesh, width)?, observer),
-        ElementKind::Q4OnePoint => run.with_formulation(
-            OnePointQ4::new(&mesh.mesh, width, scene.mesh.hourglass, elastic.p_modulus())?,
-            observer,
-        ),
-    }?;
+    let (summary, history) = model::build(scene, &mesh, model::Kernel::Solver, run)??;
     Ok(Outcome {
         summary,
         history,
@@ -75,45 +68,23 @@ pub fn simulate(scene: &Scene, observer: &mut dyn Observer) -> Result<Outcome> {
     })
 }
 
+/// The time loop of a run, on whatever model the factory built.
 struct Run<'a> {
     scene: &'a Scene,
     mesh: &'a PlateMesh,
     started: Instant,
+    observer: &'a mut dyn Observer,
 }
 
-impl Run<'_> {
-    fn with_formulation<F: Formulation>(
-        &self,
-        formulation: F,
-        observer: &mut dyn Observer,
-    ) -> Result<(Summary, History)> {
-        let m = &self.scene.material;
-        let density = m.density;
-        match VonMises::new(m) {
-            Some(plastic) => {
-                let model = PlateModel::new(formulation, plastic, self.mesh, density);
-                self.with_model(model, observer)
-            }
-            None => {
-                let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
-                let model = PlateModel::new(formulation, elastic, self.mesh, density);
-                let model = if F::STIFFNESS_MATRIX_PAYS {
-                    model.with_linear_kernel(&self.mesh.mesh, &elastic)
-                } else {
-                    model
-                };
-                self.with_model(model, observer)
-            }
-        }
-    }
+impl model::UseModel for Run<'_> {
+    type Output = Result<(Summary, History)>;
 
-    fn with_model<F: Formulation, M: ConstitutiveModel>(
-        &self,
+    fn use_model<F: Formulation, M: ConstitutiveModel>(
+        self,
         mut model: PlateModel<F, M>,
-        observer: &mut dyn Observer,
-    ) -> Result<(Summary, History)> {
+    ) -> Self::Output {
         let setup_done = Instant::now();
-        let (history, totals) = integrator::run(self.scene, self.mesh, &mut model, observer)?;
+        let (history, totals) = integrator::run(self.scene, self.mesh, &mut model, self.observer)?;
         let timing = summary::Timing {
             setup_s: (setup_done - self.started).as_secs_f64(),
             loop_s: setup_done.elapsed().as_secs_f64(),

@@ -8,14 +8,16 @@ use std::collections::BTreeMap;
 use impact_solver::contact::{solve_contact_force, LineContactLaw};
 use impact_solver::element::{
     element_max_eigenvalue, element_response, gather, lumped_masses, scatter_add, Formulation,
-    FullQ4, OnePointQ4, SelectiveQ4,
 };
 use impact_solver::impactor::RigidImpactor;
 use impact_solver::material::Elastic;
 use impact_solver::mesh::{Mesh, PlateMesh};
+use impact_solver::model::AnyFormulation;
 use impact_solver::scene::{
     ContactLawChoice, ElementKind, Impactor, Material, MeshSettings, MidSpanNode, Model, Plate,
+    DEFAULT_HOURGLASS,
 };
+use impact_solver::with_formulation;
 use impact_solver::History;
 use serde_json::Value;
 
@@ -296,39 +298,13 @@ fn impactor_kinematics(_: &Params) -> Result<RunData, String> {
 // ---------------------------------------------------------------------------------------
 // Elements.
 
-enum AnyFormulation {
-    Full(FullQ4),
-    Sri(SelectiveQ4),
-    One(OnePointQ4),
-}
-
-macro_rules! with_formulation {
-    ($f:expr, $x:ident => $body:expr) => {
-        match $f {
-            AnyFormulation::Full($x) => $body,
-            AnyFormulation::Sri($x) => $body,
-            AnyFormulation::One($x) => $body,
-        }
-    };
-}
-
 fn formulation(
     kind: ElementKind,
     mesh: &Mesh,
     width: f64,
     elastic: &Elastic,
 ) -> Result<AnyFormulation, String> {
-    Ok(match kind {
-        ElementKind::Q4Full => {
-            AnyFormulation::Full(FullQ4::new(mesh, width).map_err(|e| e.to_string())?)
-        }
-        ElementKind::Q4Sri => {
-            AnyFormulation::Sri(SelectiveQ4::new(mesh, width).map_err(|e| e.to_string())?)
-        }
-        ElementKind::Q4OnePoint => AnyFormulation::One(
-            OnePointQ4::new(mesh, width, 0.05, elastic.p_modulus()).map_err(|e| e.to_string())?,
-        ),
-    })
+    AnyFormulation::new(kind, mesh, width, DEFAULT_HOURGLASS, elastic).map_err(|e| e.to_string())
 }
 
 /// Internal forces of the whole mesh at `u`, and the max stress error against `exact`.

@@ -1,0 +1,136 @@
+//! The one model factory: element x material x kernel -> a [`PlateModel`], handed to a
+//! [`UseModel`] (the time loop, a benchmark), so the dispatch over the generic element and
+//! material types is written once. [`AnyFormulation`] with [`with_formulation!`] is the one
+//! dispatch over elements alone (static checks that need no material).
+
+use crate::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use crate::error::{Error, Result, SourceLocation};
+use crate::integrator::PlateModel;
+use crate::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::mesh::{Mesh, PlateMesh};
+use crate::scene::{ElementKind, Scene};
+
+/// One of the element formulations, chosen at run time.
+pub enum AnyFormulation {
+    Full(FullQ4),
+    Sri(SelectiveQ4),
+    OnePoint(OnePointQ4),
+}
+
+impl AnyFormulation {
+    /// The `kind` formulation on `mesh`, out-of-plane `width` (m); `hourglass` is the
+    /// Flanagan-Belytschko coefficient of `q4-1pt`, scaled by `elastic`'s P-wave modulus.
+    pub fn new(
+        kind: ElementKind,
+        mesh: &Mesh,
+        width: f64,
+        hourglass: f64,
+        elastic: &Elastic,
+    ) -> Result<AnyFormulation> {
+        Ok(match kind {
+            ElementKind::Q4Full => AnyFormulation::Full(FullQ4::new(mesh, width)?),
+            ElementKind::Q4Sri => AnyFormulation::Sri(SelectiveQ4::new(mesh, width)?),
+            ElementKind::Q4OnePoint => AnyFormulation::OnePoint(OnePointQ4::new(
+                mesh,
+                width,
+                hourglass,
+                elastic.p_modulus(),
+            )?),
+        })
+    }
+}
+
+/// `with_formulation!(any, f => body)`: `body` with `f` bound to the concrete formulation
+/// inside an [`AnyFormulation`] (by value, reference or mutable reference, as `any` is).
+#[macro_export]
+macro_rules! with_formulation {
+    ($any:expr, $f:ident => $body:expr) => {
+        match $any {
+            $crate::model::AnyFormulation::Full($f) => $body,
+            $crate::model::AnyFormulation::Sri($f) => $body,
+            $crate::model::AnyFormulation::OnePoint($f) => $body,
+        }
+    };
+}
+
+/// The material model and how the elastic internal forces are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernel {
+    /// What `simulate` runs: von Mises when the material has plasticity, else [`Kernel::Elastic`].
+    Solver,
+    /// Elastic, with precomputed element stiffness matrices where they pay
+    /// ([`Formulation::STIFFNESS_MATRIX_PAYS`]), the stress path elsewhere.
+    Elastic,
+    /// Elastic, always with precomputed element stiffness matrices.
+    ElasticStiffnessMatrix,
+    /// Elastic, always through the stresses (strain -> stress -> `B^T s`).
+    ElasticStressPath,
+    /// Von Mises plasticity (the material must have `plasticity`).
+    Plastic,
+}
+
+/// What to do with a built model, for every element x material combination.
+pub trait UseModel {
+    type Output;
+    fn use_model<F: Formulation, M: ConstitutiveModel>(
+        self,
+        model: PlateModel<F, M>,
+    ) -> Self::Output;
+}
+
+/// Builds the model of `scene` on `mesh` (its element, its material, `kernel`) and hands it
+/// to `user`.
+pub fn build<U: UseModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    user: U,
+) -> Result<U::Output> {
+    let m = &scene.material;
+    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    let formulation = AnyFormulation::new(
+        scene.mesh.element,
+        &mesh.mesh,
+        scene.plate.width,
+        scene.mesh.hourglass,
+        &elastic,
+    )?;
+    with_formulation!(formulation, f => with_material(f, scene, mesh, kernel, user))
+}
+
+fn with_material<F: Formulation, U: UseModel>(
+    formulation: F,
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    user: U,
+) -> Result<U::Output> {
+    let m = &scene.material;
+    let plastic = match kernel {
+        Kernel::Solver | Kernel::Plastic => VonMises::new(m),
+        _ => None,
+    };
+    if let Some(plastic) = plastic {
+        return Ok(user.use_model(PlateModel::new(formulation, plastic, mesh, m.density)));
+    }
+    if kernel == Kernel::Plastic {
+        return Err(Error::invalid(
+            SourceLocation::file(&scene.source),
+            "material.plasticity",
+            "none",
+            "the plastic kernel needs a material with plasticity",
+        ));
+    }
+    let stiffness_matrix = match kernel {
+        Kernel::ElasticStiffnessMatrix => true,
+        Kernel::ElasticStressPath => false,
+        _ => F::STIFFNESS_MATRIX_PAYS,
+    };
+    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    let model = PlateModel::new(formulation, elastic, mesh, m.density);
+    Ok(user.use_model(if stiffness_matrix {
+        model.with_linear_kernel(&mesh.mesh, &elastic)
+    } else {
+        model
+    }))
+}
