@@ -64,9 +64,13 @@ pub enum RefKind {
     /// Another code's output (the independent Python FE).
     #[serde(rename = "independent code")]
     IndependentCode,
-    /// A number printed in Dokko & Kim (2004).
+    /// A number printed in Dokko & Kim (2004) that no parameter was fitted to.
     #[serde(rename = "paper")]
     Paper,
+    /// A number printed in Dokko & Kim (2004) that the reconstructed plate was fitted to
+    /// (scripts/reconstruct.py): agreement shows the fit, it is not evidence (issue 10).
+    #[serde(rename = "calibration")]
+    Calibration,
     /// A conservation law or identity that must hold in every run.
     #[serde(rename = "invariant")]
     Invariant,
@@ -84,6 +88,7 @@ impl RefKind {
             RefKind::Analytical => "analytical",
             RefKind::IndependentCode => "independent code",
             RefKind::Paper => "paper",
+            RefKind::Calibration => "calibration",
             RefKind::Invariant => "invariant",
             RefKind::Regression => "regression",
             RefKind::Acceptance => "acceptance",
@@ -117,6 +122,33 @@ pub struct CaseFile {
     /// Plots for the report.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
+    /// Trivial or wrong models the evidence checks are re-evaluated on (issue 10).
+    #[serde(default)]
+    pub wrong_models: BTreeMap<String, Spanned<WrongModelSpec>>,
+}
+
+/// A trivial or wrong model: what the case's checks would say about it (the
+/// discriminating-power table of the report). Exactly one of `rigid_wall`, `replace`, `set`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WrongModelSpec {
+    pub title: String,
+    /// No plate at all: every impact scene reads I = 2 m v0, v_f = -v0, no displacement, no
+    /// stress, no dissipation (closed form, no run).
+    #[serde(default)]
+    pub rigid_wall: bool,
+    /// Scenes read in place of others, e.g. `{plastic: elastic}`: the elastic plate in the
+    /// elasto-plastic row (no run).
+    #[serde(default)]
+    pub replace: BTreeMap<String, String>,
+    /// Overrides (as a scene's `set`) applied to each of `scenes`, run as `SCENE~MODEL`.
+    #[serde(default)]
+    pub set: BTreeMap<String, serde_json::Value>,
+    #[serde(default)]
+    pub scenes: Vec<String>,
+    /// The runs of `set` happen only in the full matrix (`impact verify` without --light).
+    #[serde(default)]
+    pub heavy: bool,
 }
 
 #[derive(Debug, Deserialize)]

@@ -211,6 +211,9 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             "initial_kinetic_J".into(),
             0.5 * i.mass * i.velocity * i.velocity,
         );
+        for (k, v) in impact_discriminators(i.mass, i.velocity, s.impulse, vf) {
+            metrics.insert(k.into(), v);
+        }
     }
     if let Some((ratio, eqps)) = observer_bound {
         metrics.insert("stress_flow_ratio_max".into(), ratio);
@@ -224,6 +227,28 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
         info: scene_info(scene, s),
         summary: Some(summary),
     })
+}
+
+/// Quantities of an impact that a rigid wall (I = 2 m v0, v_f = -v0) gets wrong by all of
+/// themselves (issue 10): the restitution deficit `(2 m v0 - I) / (m v0)` (0 for a rigid
+/// wall, 1 for a fully plastic stop), and the energy the plate takes from the impactor,
+/// `m (v0^2 - v_f^2) / 2` in J (0 for a rigid wall). `v_f` is signed, positive toward the plate.
+pub fn impact_discriminators(
+    mass: f64,
+    v0: f64,
+    impulse: f64,
+    v_final: f64,
+) -> [(&'static str, f64); 2] {
+    [
+        (
+            "restitution_deficit",
+            (2.0 * mass * v0 - impulse) / (mass * v0),
+        ),
+        (
+            "plate_absorbed_energy_J",
+            0.5 * mass * (v0 * v0 - v_final * v_final),
+        ),
+    ]
 }
 
 /// Numeric leaves of a JSON value under dotted keys.

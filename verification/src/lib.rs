@@ -7,6 +7,8 @@ pub mod builtins;
 pub mod case;
 pub mod check;
 pub mod diff;
+pub mod discriminate;
+pub mod evidence_report;
 pub mod jobs;
 pub mod lint;
 pub mod markdown;

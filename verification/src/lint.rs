@@ -165,6 +165,22 @@ fn lint_case(
             }
         }
     }
+    for (name, m) in &f.wrong_models {
+        let w = &m.value;
+        let forms = [w.rigid_wall, !w.replace.is_empty(), !w.set.is_empty()];
+        if forms.iter().filter(|&&b| b).count() != 1 || w.set.is_empty() != w.scenes.is_empty() {
+            push(
+                case.loc(m),
+                format!(
+                    "wrong model {name}: exactly one of rigid_wall, replace, or set with scenes"
+                ),
+            );
+        }
+        let named = w.replace.iter().flat_map(|(a, b)| [a, b]).chain(&w.scenes);
+        for s in named.filter(|s| !f.scenes.contains_key(*s)) {
+            push(case.loc(m), format!("wrong model {name}: no scene {s:?}"));
+        }
+    }
     let mut check_ids = BTreeSet::new();
     for c in &f.checks {
         let loc = case.loc(c);

@@ -510,7 +510,9 @@ pub fn write_report_with(
             .find(|d| d.is_dir())
     });
     let bench = crate::bench_report::context(bench_dir.as_deref(), out);
+    let evidence = crate::evidence_report::context(&results, &repo.root, out);
     let ctx = serde_json::json!({
+        "evidence": evidence,
         "recon": recon,
         "bench": bench,
         "source": from.display().to_string(),

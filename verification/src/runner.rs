@@ -80,6 +80,12 @@ pub struct CaseResult {
     pub series: BTreeMap<String, SeriesData>,
     pub plots: Vec<crate::case::PlotSpec>,
     pub checks: Vec<CheckResult>,
+    /// The case's trivial or wrong models (name -> title) and what each gives for every
+    /// evidence check (issue 10; empty when the case declares none).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub wrong_models: BTreeMap<String, String>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub discrimination: Vec<crate::discriminate::Row>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -206,7 +212,11 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         let case_skipped = case.file.skip.as_ref().is_some_and(|s| s.value.is_skip());
         let mut map = BTreeMap::new();
         if !case_skipped {
-            match jobs::case_jobs(case) {
+            let all = jobs::case_jobs(case).and_then(|mut js| {
+                js.extend(crate::discriminate::jobs(case, &js, opts.include_heavy)?);
+                Ok(js)
+            });
+            match all {
                 Ok(js) => {
                     for (name, job) in js {
                         let key = job.key();
@@ -330,6 +340,18 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
             }
             checks.push(r);
         }
+        let evaluated: Vec<&crate::case::CheckFile> = case
+            .file
+            .checks
+            .iter()
+            .map(|k| &k.value)
+            .filter(|k| check_matches(case, &k.id, &opts.filter))
+            .collect();
+        let discrimination = if case_skip.is_none() && setup_error.is_none() {
+            crate::discriminate::rows(case, &evaluated, &ctx)
+        } else {
+            Vec::new()
+        };
         let mut series_data = BTreeMap::new();
         for (name, metrics) in series_metrics {
             let Some(spec) = series.get(&name) else {
@@ -385,6 +407,8 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
             series: series_data,
             plots: case.file.plots.clone(),
             checks,
+            wrong_models: crate::discriminate::titles(case),
+            discrimination,
         });
         data.insert((case.suite.clone(), case.name.clone()), results);
     }

@@ -4,6 +4,8 @@
 //! - insta snapshots of every case (checks, summaries, histories at fixed times; fixed
 //!   significant digits). CI runs with INSTA_UPDATE=no and CI=true: a changed or missing
 //!   snapshot fails; review a change with `cargo insta review`.
+//! - no trivial model (rigid wall, elastic plate in an elasto-plastic row) passes an evidence
+//!   check (issue 10), and the report shows the discriminating-power table;
 //! - results do not depend on the number of threads.
 
 mod support;
@@ -59,6 +61,22 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     );
     assert!(fixed.is_empty(), "{}", fixed.join("\n"));
 
+    // Issue 10: no trivial model (a rigid wall, the elastic plate in an elasto-plastic row)
+    // passes a check that counts as evidence, and the table covers the paper cases.
+    let json = serde_json::to_value(m).unwrap();
+    let trivial = impact_verification::evidence_report::trivial_passes(&json);
+    assert!(trivial.is_empty(), "trivial models pass: {trivial:?}");
+    let with_table: Vec<&str> = m
+        .cases
+        .iter()
+        .filter(|c| !c.discrimination.is_empty())
+        .map(|c| c.suite.as_str())
+        .collect();
+    assert!(
+        with_table.contains(&"table1") && with_table.contains(&"momentum-impulse"),
+        "{with_table:?}"
+    );
+
     // results.json and JUnit round-trip.
     let out = std::env::temp_dir().join(format!("impact-verify-test-{}", std::process::id()));
     runner::write_outputs(&outcome, &out).unwrap();
@@ -94,6 +112,12 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(
         html.contains("Requirements traceability matrix") && html.contains("Table 1 (m = 18 kg")
+    );
+    assert!(
+        html.contains("No validation against experiment has been performed")
+            && html.contains("Discriminating power")
+            && html.contains("rigid-wall"),
+        "the evidence section"
     );
     assert!(
         html.matches("<svg").count() >= 10,
