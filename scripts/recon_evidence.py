@@ -154,7 +154,7 @@ def vv20(search: dict) -> dict:
             how = f"GCI, order {p:.2f}, Fs 1.25"
         else:
             gci = 3.0 * abs(d32 / f2)
-            how = "no order established: Fs 3 x |80x16 - 160x32|"
+            how = "no order established: Fs 3 x abs(80x16 - 160x32)"
         u_num = gci / 2.0
         spread = abs(parts.get(f"{k}:parts", {}).get("spread", 0.0))
         u_input = spread / math.sqrt(3.0)
@@ -241,6 +241,9 @@ class Lost:
             if ev is None:
                 return 1e6
             j = J(ev, keys, SCALE_10)
+            if self.n_eval % 20 == 0:
+                print(f"  {mesh[0]}x{mesh[1]}/{recovery}: {self.n_eval} evaluations, "
+                      f"best J {min(best['J'], j):.2f}", flush=True)
             if j < best["J"]:
                 best.update({"J": j, "x": x, "rel": ev})
             return j
@@ -381,7 +384,10 @@ def page(ev: dict) -> str:
         r = lm["runs"]
         lines += ["", f"Cost: {lm['evaluations']} evaluations, {r['executed']} runs "
                       f"({r['cache_hits']} from the cache), {r['run_wall_s']} s of runs."]
-    lines += ["", ev["answer"], ""]
+    lines += ["", ev["answer"], "", "## Provenance", "",
+              "| item | value |", "|---|---|"]
+    lines += [f"| {k} | `{v}` |" for k, v in sorted(ev["provenance"].items())]
+    lines.append("")
     return "\n".join(lines)
 
 
@@ -418,6 +424,13 @@ def main() -> int:
         lost = Lost(Path(a.impact), Path(a.work))
     ev["lost_mesh"] = lost_mesh(search, cand, lost, a.fev)
     ev["answer"] = answer(ev["lost_mesh"])
+    ev["provenance"] = {
+        "command": "scripts/recon_evidence.py " + " ".join(sys.argv[1:]),
+        "search_json_sha256": rc.sha256_file(OUT / "search.json"),
+        "script_sha256": rc.sha256_file(Path(__file__)),
+        "solver_binary_sha256": lost.runner.bin_sha if lost else None,
+        "git_head": rs.git("rev-parse", "HEAD"),
+    }
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     (out / "evidence.json").write_text(json.dumps(ev, indent=1, sort_keys=True) + "\n")
