@@ -2,7 +2,7 @@
 //! experiment has been performed, the checks by reference kind (calibration apart from the
 //! evidence), the discriminating-power table (what trivial or wrong models give for every
 //! evidence check), and the reconstruction's evidence page (leave-out residuals, V&V 20
-//! bands, the lost mesh) written by `scripts/recon_evidence.py`.
+//! bands, the lost mesh) written by `scripts/reconstruction/recon_evidence.py`.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -10,7 +10,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-/// Where `scripts/recon_evidence.py` writes its page, relative to the repository root.
+/// Where `scripts/reconstruction/recon_evidence.py` writes its page, relative to the repository root.
 pub const EVIDENCE_PAGE: &str = "reference-data/paper/reconstruction/evidence.md";
 
 /// The sentence the issue asks for, shown first.
@@ -180,7 +180,7 @@ pub fn markdown(results: &Value, evidence_page: Option<&str>) -> String {
         None => {
             let _ = writeln!(
                 s,
-                "**Not yet produced:** `{EVIDENCE_PAGE}`. Run `scripts/recon_evidence.py`."
+                "**Not yet produced:** `{EVIDENCE_PAGE}`. Run `scripts/reconstruction/recon_evidence.py`."
             );
         }
     }

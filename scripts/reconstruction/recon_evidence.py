@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Calibration is not validation: evidence for the reconstructed plate (issue 10, sections 2, 4).
 
-    scripts/recon_evidence.py             # all three studies (~10 min of one core, nice'd)
-    scripts/recon_evidence.py --no-runs   # only what the stored search data gives (seconds)
+    scripts/reconstruction/recon_evidence.py             # all three studies (~10 min of one core, nice'd)
+    scripts/reconstruction/recon_evidence.py --no-runs   # only what the stored search data gives (seconds)
 
-1. Leave-out study. The reconstruction (scripts/reconstruct.py) fitted one plate to all 26
+1. Leave-out study. The reconstruction (scripts/reconstruction/reconstruct.py) fitted one plate to all 26
    numbers of Tables 1 and 2, so agreement with them is calibration. Here each group (the
    elasto-plastic Table 1 row, the elastic row, the Table 2 elastic and elasto-plastic
    impulses) and each single number is left out: the plate is re-chosen without it, by the
@@ -30,21 +30,15 @@ out/recon-evidence/runs.json (keyed by the solver binary's sha256 and the scene 
 """
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
-try:
-    import numpy  # noqa: F401
-    import yaml  # noqa: F401
-except ImportError:
-    venv = ROOT / ".venv"
-    if (venv / "bin" / "python").exists() and Path(sys.prefix).resolve() != venv.resolve():
-        os.execv(str(venv / "bin" / "python"),
-                 [str(venv / "bin" / "python"), __file__, *sys.argv[1:]])
-    sys.exit("recon_evidence.py: numpy/pyyaml missing: run scripts/setup-venv.sh first")
+ROOT = HERE.parents[1]
+sys.path.insert(0, str(HERE.parent))
+import use_venv  # noqa: E402
+
+use_venv.ensure(__file__, ["numpy", "scipy", "yaml"])
 
 import argparse  # noqa: E402
 import json  # noqa: E402
@@ -52,8 +46,6 @@ import math  # noqa: E402
 import re  # noqa: E402
 import subprocess  # noqa: E402
 import tempfile  # noqa: E402
-
-import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(HERE))
 import recon_core as rc  # noqa: E402
@@ -309,7 +301,7 @@ def page(ev: dict) -> str:
     lines = [
         "# Calibration and validation evidence for the reconstructed plate",
         "",
-        "Written by `scripts/recon_evidence.py` from `search.json` (and, for section 3, its own "
+        "Written by `scripts/reconstruction/recon_evidence.py` from `search.json` (and, for section 3, its own "
         "coarse-mesh runs). **No validation against experiment has been performed: the paper's "
         "Tables 1 and 2 are computed results of the authors' program, and the plate was "
         "calibrated to all 26 of their numbers.** Agreement with a number the plate was fitted "
@@ -425,7 +417,7 @@ def main() -> int:
     ev["lost_mesh"] = lost_mesh(search, cand, lost, a.fev)
     ev["answer"] = answer(ev["lost_mesh"])
     ev["provenance"] = {
-        "command": "scripts/recon_evidence.py " + " ".join(sys.argv[1:]),
+        "command": "scripts/reconstruction/recon_evidence.py " + " ".join(sys.argv[1:]),
         "search_json_sha256": rc.sha256_file(OUT / "search.json"),
         "script_sha256": rc.sha256_file(Path(__file__)),
         "solver_binary_sha256": lost.runner.bin_sha if lost else None,
