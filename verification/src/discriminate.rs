@@ -49,8 +49,9 @@ pub fn run_name(scene: &str, model: &str) -> String {
     format!("{scene}~{model}")
 }
 
-/// The runs the case's `set` models need: `SCENE~MODEL` for each of their scenes, as the
-/// scene's own job with the model's overrides on top. Heavy models only with `include_heavy`.
+/// The runs the case's `set` models need: `SCENE~MODEL` for each of their scenes, the
+/// scene's file with its own overrides and the model's on top (as one set of overrides).
+/// Heavy models only with `include_heavy`.
 pub fn jobs(
     case: &Case,
     base: &BTreeMap<String, crate::jobs::Job>,
@@ -64,27 +65,27 @@ pub fn jobs(
             continue;
         }
         for scene in &spec.scenes {
-            let Some(crate::jobs::Job::Scene {
-                scene: s,
-                stress_bound,
-                expect_error,
-            }) = base.get(scene)
+            let (Some(s), Some(crate::jobs::Job::Scene { stress_bound, .. })) =
+                (case.file.scenes.get(scene), base.get(scene))
             else {
                 return Err(format!(
                     "{loc}: wrong model {model}: {scene:?} is not a scene of this case"
                 ));
             };
-            let mut s = (**s).clone();
-            for (key, value) in &spec.set {
-                crate::jobs::apply_override(&mut s, key, value)
-                    .map_err(|e| format!("{loc}: wrong model {model}: set {key}: {e}"))?;
-            }
+            let file =
+                s.value.file.as_ref().ok_or_else(|| {
+                    format!("{loc}: wrong model {model}: scene {scene} has no file")
+                })?;
+            let mut set = s.value.set.clone();
+            set.extend(spec.set.clone());
+            let run = impact_solver::scene::Scene::from_file_with(&case.dir.join(file), &set)
+                .map_err(|e| format!("{loc}: wrong model {model}: {e}"))?;
             out.insert(
                 run_name(scene, model),
                 crate::jobs::Job::Scene {
-                    scene: Box::new(s),
+                    scene: Box::new(run),
                     stress_bound: *stress_bound,
-                    expect_error: expect_error.clone(),
+                    expect_error: Vec::new(),
                 },
             );
         }
