@@ -300,9 +300,16 @@ fn key_diff(key: String, a: Option<Value>, b: Option<Value>, tol: f64, timing: b
     }
 }
 
-type Histories = (Vec<ColumnDiff>, (f64, f64, usize), ((f64, f64), (f64, f64)));
+/// Column comparisons, the compared window (start s, end s, rows) and both time spans, s.
+pub type Histories = (Vec<ColumnDiff>, (f64, f64, usize), ((f64, f64), (f64, f64)));
 
 fn diff_histories(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
+    diff_csv(&a.join("history.csv"), &b.join("history.csv"), tol)
+}
+
+/// Compares two history CSV files (`time_s` first) column by column on A's time grid:
+/// the columns, the compared window [start, end, rows] and the two time spans, s.
+pub fn diff_csv(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
     let (ha, hb) = (history_columns(a)?, history_columns(b)?);
     let (ta, tb) = (&ha[0].1, &hb[0].1);
     let span = |t: &[f64]| (t[0], t[t.len() - 1]);
@@ -378,14 +385,13 @@ fn column_diff(
     }
 }
 
-/// (name, values) per column of `DIR/history.csv`, `time_s` first.
-fn history_columns(dir: &Path) -> Result<Vec<(String, Vec<f64>)>> {
-    let path = dir.join("history.csv");
-    let mut rd = csv::Reader::from_path(&path).with_context(|| {
+/// (name, values) per column of a history CSV file, `time_s` first.
+pub fn history_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>> {
+    let mut rd = csv::Reader::from_path(path).with_context(|| {
         format!(
             "{}: cannot read (is {} the --out folder of `impact simulate`?)",
             path.display(),
-            dir.display()
+            path.parent().unwrap_or(Path::new(".")).display()
         )
     })?;
     let names: Vec<String> = rd

@@ -2,6 +2,7 @@
 //! checks; the lint; the parallel runner and its matrix, results.json and JUnit output; the
 //! V&V report. The `impact` binary (`src/main.rs`) is its command line.
 
+pub mod baseline;
 pub mod bench_report;
 pub mod builtins;
 pub mod case;

@@ -79,6 +79,11 @@ enum Command {
         /// Repository root (default: found from the current folder).
         #[arg(long)]
         root: Option<PathBuf>,
+        /// An earlier verify output folder (e.g. of the main branch): results.json gains per
+        /// check the baseline value, the change and the change as a fraction of the
+        /// tolerance, and the report opens with "What changed".
+        #[arg(long)]
+        baseline: Option<PathBuf>,
     },
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
     /// reasons, provenance of reference files.
@@ -151,12 +156,13 @@ fn main() -> ExitCode {
             benchmarks,
             reconstruction,
             root,
+            baseline,
         } => {
             let report = report.then_some(ReportOptions {
                 benchmarks,
                 reconstruction,
             });
-            verify(selectors, filter, jobs, out, light, report, root)
+            verify(selectors, filter, jobs, out, light, report, root, baseline)
         }
         Command::Lint { root } => lint(root),
         Command::Diff { run_a, run_b, tol } => {
@@ -249,6 +255,7 @@ fn verify(
     light: bool,
     report: Option<ReportOptions>,
     root: Option<PathBuf>,
+    baseline: Option<PathBuf>,
 ) -> ExitCode {
     let repo = match repo(root) {
         Ok(r) => r,
@@ -288,6 +295,16 @@ fn verify(
         "wrote {}/results.json, junit.xml, matrix.txt ({wall:.1} s, {jobs} jobs)",
         out.display()
     );
+    let _ = std::fs::remove_file(out.join("what-changed.md"));
+    if let Some(dir) = baseline {
+        match impact_verification::baseline::apply(&dir, &out) {
+            Ok(changes) => println!("{}", changes.line()),
+            Err(e) => {
+                eprintln!("error: --baseline {}: {e:#}", dir.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
     if let Some(opts) = report {
         match impact_verification::report::write_report_with(&out, &out, &opts) {
             Ok(files) => {

@@ -513,6 +513,7 @@ pub fn write_report_with(
     let evidence = crate::evidence_report::context(&results, &repo.root, out);
     let ctx = serde_json::json!({
         "evidence": evidence,
+        "changes": crate::baseline::report_context(from, out),
         "recon": recon,
         "bench": bench,
         "source": from.display().to_string(),
