@@ -64,7 +64,8 @@ pub fn run(name: &str, p: &Params) -> Result<RunData, String> {
         "beam-bending" => beam_bending(p),
         "modal-beam" => modal_beam(p),
         "plane-wave" => plane_wave(p),
-        o => Err(format!("unknown builtin {o:?}")),
+        o => crate::code_verification::run(o, p)
+            .unwrap_or_else(|| Err(format!("unknown builtin {o:?}"))),
     }?;
     d.info.insert("builtin".into(), name.to_string());
     for (k, v) in p {

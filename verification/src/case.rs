@@ -277,7 +277,8 @@ pub struct MeasureFile {
     /// Observed order of convergence over a series.
     #[serde(default)]
     pub order: Option<SeriesQuantity>,
-    /// Grid convergence index of the finest level (Roache, Fs = 1.25), relative.
+    /// Grid convergence index of the finest level, relative, by the rule of `crate::gci`
+    /// (Roache; Celik et al. 2008): needs `formal`; a non-asymptotic series fails.
     #[serde(default)]
     pub gci: Option<SeriesQuantity>,
     /// Relative change from the first to the last level of a series,
@@ -371,6 +372,10 @@ pub struct ErrorFile {
 pub struct SeriesQuantity {
     pub series: String,
     pub metric: String,
+    /// The method's formal order: required by `gci` (it sets the safety factor and caps the
+    /// order, see `crate::gci`).
+    #[serde(default)]
+    pub formal: Option<f64>,
 }
 
 /// The reference of a check: its kind, where the value comes from, and a one-line source.
@@ -486,6 +491,11 @@ pub struct PlotSpec {
     pub scale: Option<f64>,
     #[serde(default)]
     pub unit: Option<String>,
+    /// The horizontal axis's label when the histories' `time_s` column holds something else
+    /// than a time (e.g. the refinement step of an order-of-accuracy builtin): plotted as is,
+    /// not in ms.
+    #[serde(default)]
+    pub x_label: Option<String>,
 }
 
 /// A parsed case with where it lives.

@@ -318,9 +318,12 @@ pub fn measure_value(
         let b = measure_value(&inherit(&r[1], m), ctx, ref_history)?;
         a / b
     } else if let Some(q) = &m.order {
-        series_order(q, ctx)?.0
+        series_order(q, ctx)?.finest_order()
     } else if let Some(q) = &m.gci {
-        series_order(q, ctx)?.1
+        series_order(q, ctx)?
+            .gci
+            .ok_or("a gci needs the formal order: gci: {series, metric, formal}")?
+            .value
     } else if let Some(q) = &m.change {
         series_change(q, ctx)?
     } else {
@@ -365,19 +368,24 @@ pub fn series_values(
     Ok((s.levels.clone(), values, s.refine))
 }
 
-/// Observed order and GCI (fine level, relative, Fs = 1.25) from the three finest levels.
-pub fn series_order(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<(f64, f64), String> {
+/// The series assessed by the GCI rule of [`crate::gci`] (every triplet's order, monotone
+/// convergence, the safety factor); `Err` with the evidence when it is not asymptotic.
+pub fn series_order(
+    q: &crate::case::SeriesQuantity,
+    ctx: &Context,
+) -> Result<crate::gci::Assessment, String> {
     let (levels, f, _) = series_values(&q.series, &q.metric, ctx)?;
-    let n = levels.len();
-    if n < 3 {
+    if levels.len() < 3 {
         return Err("an order needs at least three levels".into());
     }
-    let (l1, l2, l3) = (levels[n - 3], levels[n - 2], levels[n - 1]);
-    let r = l2 / l1;
-    if ((l3 / l2) / r - 1.0).abs() > 1e-9 {
-        return Err("the three finest levels must have a constant refinement ratio".into());
+    let r = levels[1] / levels[0];
+    if levels
+        .windows(2)
+        .any(|w| ((w[1] / w[0]) / r - 1.0).abs() > 1e-9)
+    {
+        return Err("the levels must have a constant refinement ratio".into());
     }
-    Ok(order_and_gci(f[n - 3], f[n - 2], f[n - 1], r))
+    crate::gci::assess(&f, r, q.formal)
 }
 
 /// Relative change from the first to the last level: `|f_first - f_last| / |f_last|`.
@@ -387,18 +395,6 @@ pub fn series_change(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<f
         (Some(first), Some(last)) if f.len() >= 2 => Ok(((first - last) / last).abs()),
         _ => Err("a change needs at least two levels".into()),
     }
-}
-
-/// Observed order `p = ln(|f1 - f2| / |f2 - f3|) / ln r` (f1 coarse) and the fine-grid GCI
-/// `1.25 |(f2 - f3) / f3| / (r^p - 1)` (infinite when p <= 0).
-pub fn order_and_gci(f1: f64, f2: f64, f3: f64, r: f64) -> (f64, f64) {
-    let p = ((f1 - f2).abs() / (f2 - f3).abs()).ln() / r.ln();
-    let gci = if p > 0.0 && f3 != 0.0 {
-        1.25 * ((f2 - f3) / f3).abs() / (r.powf(p) - 1.0)
-    } else {
-        f64::INFINITY
-    };
-    (p, gci)
 }
 
 fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Result<f64, String> {
@@ -530,19 +526,6 @@ pub fn read_csv_columns(path: &Path, name: &str) -> Result<(Vec<f64>, Vec<f64>),
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn observed_order_of_an_exact_power_law_is_recovered() {
-        // f(h) = 1 + 3 h^2 at h = 1/4, 1/8, 1/16: p = 2, GCI = 1.25 |f2 - f3| / f3 / 3.
-        let f = |h: f64| 1.0 + 3.0 * h * h;
-        let (p, gci) = order_and_gci(f(0.25), f(0.125), f(0.0625), 2.0);
-        assert!((p - 2.0).abs() < 1e-12, "{p}");
-        let expected = 1.25 * ((f(0.125) - f(0.0625)) / f(0.0625)).abs() / 3.0;
-        assert!((gci / expected - 1.0).abs() < 1e-12);
-        // A diverging sequence has no positive order and an infinite GCI.
-        let (p, gci) = order_and_gci(1.0, 1.1, 1.3, 2.0);
-        assert!(p < 0.0 && gci.is_infinite());
-    }
 
     #[test]
     fn interpolation_is_linear_and_clamped() {

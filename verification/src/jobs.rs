@@ -418,10 +418,13 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
             })
         }
         (None, Some(name)) => {
-            if !crate::builtins::NAMES.contains(&name.as_str()) {
+            let known = crate::builtins::NAMES
+                .iter()
+                .chain(&crate::code_verification::NAMES);
+            if !known.clone().any(|n| n == name) {
                 return Err(format!(
                     "{loc}: unknown builtin {name:?} (known: {})",
-                    crate::builtins::NAMES.join(", ")
+                    known.copied().collect::<Vec<_>>().join(", ")
                 ));
             }
             Ok(Job::Builtin {

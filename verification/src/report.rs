@@ -190,12 +190,16 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
             .flatten()
             .filter_map(|s| s.as_str())
             .collect();
+        let (xlabel, xscale) = match p["x_label"].as_str() {
+            Some(l) => (l, 1.0),
+            None => ("time (ms)", 1e3),
+        };
         let mut series: Vec<Series> = Vec::new();
         let load = |path: &Path, col: &str| {
             crate::check::read_csv_columns(path, col).map(|(t, v)| {
                 t.iter()
                     .zip(&v)
-                    .map(|(t, v)| (t * 1e3, v * scale))
+                    .map(|(t, v)| (t * xscale, v * scale))
                     .collect::<Vec<_>>()
             })
         };
@@ -234,10 +238,7 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
             } else {
                 format!("{col} ({unit})")
             };
-            out.push((
-                title.to_string(),
-                svg_plot(title, "time (ms)", &ylabel, &series),
-            ));
+            out.push((title.to_string(), svg_plot(title, xlabel, &ylabel, &series)));
         } else {
             for s in &scenes {
                 let mut series: Vec<Series> = Vec::new();
@@ -248,7 +249,7 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
                 }
                 out.push((
                     format!("{title} ({s})"),
-                    svg_plot(title, "time (ms)", unit, &series),
+                    svg_plot(title, xlabel, unit, &series),
                 ));
             }
         }
@@ -274,8 +275,19 @@ fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, S
                     continue;
                 }
                 let r = levels[n - 1] / levels[n - 2];
-                let (p, _) = crate::check::order_and_gci(f[n - 3], f[n - 2], f[n - 1], r);
-                let title = format!("{name}: {metric}, observed order p = {p:.2}");
+                let (p, title) = match crate::gci::assess(&f, r, None) {
+                    Ok(a) => {
+                        let orders: Vec<String> =
+                            a.orders.iter().map(|p| format!("{p:.2}")).collect();
+                        let p = a.finest_order();
+                        let all = orders.join(", ");
+                        (p, format!("{name}: {metric}, observed order p = {p:.2} (triplets coarse to fine: {all})"))
+                    }
+                    Err(_) => (
+                        f64::NAN,
+                        format!("{name}: {metric}, not in the asymptotic range (no order)"),
+                    ),
+                };
                 if p.is_finite() && p > 0.0 {
                     let f_ext = f[n - 1] + (f[n - 1] - f[n - 2]) / (r.powf(p) - 1.0);
                     let pts: Vec<(f64, f64)> = levels

@@ -1,0 +1,67 @@
+//! Code verification builtins (issue 15): observed order of accuracy of the three Q4
+//! elements and of central differences on a manufactured solution, and the impactor's
+//! update against a fixed linear spring. Each returns metrics for the checks and a small
+//! history ("orders") for the report's order plots.
+
+pub mod driver;
+pub mod macneal_harder;
+pub mod manufactured;
+pub mod orders;
+pub mod space_time;
+pub mod spring;
+
+use std::collections::BTreeMap;
+
+use serde_json::Value;
+
+use crate::jobs::RunData;
+
+/// The builtins of this module.
+pub const NAMES: [&str; 4] = [
+    "mms-space",
+    "mms-time",
+    "impactor-spring",
+    "macneal-harder-patch",
+];
+
+/// Runs one of [`NAMES`]; `None` if the name is not one of them.
+pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, String>> {
+    Some(match name {
+        "mms-space" => space_time::space(p),
+        "mms-time" => space_time::time(p),
+        "impactor-spring" => spring::spring(p),
+        "macneal-harder-patch" => macneal_harder::patch(p),
+        _ => return None,
+    })
+}
+
+/// A number parameter (or its default).
+pub(crate) fn param(p: &BTreeMap<String, Value>, k: &str, default: f64) -> Result<f64, String> {
+    match p.get(k) {
+        None => Ok(default),
+        Some(v) => v
+            .as_f64()
+            .ok_or_else(|| format!("param {k}: {v} is not a number")),
+    }
+}
+
+/// A list of positive integers parameter (or its default).
+pub(crate) fn param_levels(
+    p: &BTreeMap<String, Value>,
+    k: &str,
+    default: &[usize],
+) -> Result<Vec<usize>, String> {
+    match p.get(k) {
+        None => Ok(default.to_vec()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_u64()
+                    .filter(|&n| n > 0)
+                    .map(|n| n as usize)
+                    .ok_or_else(|| format!("param {k}: {v} is not a positive integer"))
+            })
+            .collect(),
+        Some(v) => Err(format!("param {k}: {v} is not a list")),
+    }
+}
