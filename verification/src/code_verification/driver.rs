@@ -5,10 +5,11 @@
 //! `u_{n+1} = u_n + dt v_{n+1/2}`), plus what the scene format has no words for: a body
 //! force, initial displacement and velocity fields, and every boundary node held.
 
-use impact_solver::element::{shape, Formulation, FullQ4, OnePointQ4, PointGeometry, SelectiveQ4};
+use impact_solver::element::{shape, Formulation, PointGeometry};
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::Elastic;
 use impact_solver::mesh::{Mesh, PlateMesh};
+use impact_solver::model::AnyFormulation;
 use impact_solver::scene::ElementKind;
 
 use super::manufactured::Manufactured;
@@ -86,29 +87,9 @@ pub fn run(
     element: ElementKind,
     steps: Steps,
 ) -> Result<Run, String> {
-    let width = 1.0;
-    let m = &mesh.mesh;
-    let err = |e: impact_solver::Error| e.to_string();
-    match element {
-        ElementKind::Q4Full => march(
-            ms,
-            elastic,
-            mesh,
-            FullQ4::new(m, width).map_err(err)?,
-            steps,
-        ),
-        ElementKind::Q4Sri => march(
-            ms,
-            elastic,
-            mesh,
-            SelectiveQ4::new(m, width).map_err(err)?,
-            steps,
-        ),
-        ElementKind::Q4OnePoint => {
-            let f = OnePointQ4::new(m, width, HOURGLASS_KAPPA, elastic.p_modulus()).map_err(err)?;
-            march(ms, elastic, mesh, f, steps)
-        }
-    }
+    let any = AnyFormulation::new(element, &mesh.mesh, 1.0, HOURGLASS_KAPPA, elastic)
+        .map_err(|e| e.to_string())?;
+    impact_solver::with_formulation!(any, f => march(ms, elastic, mesh, f, steps))
 }
 
 /// Consistent nodal body force `int N_a b(x, 0) dV` (2x2 Gauss, width 1 m), N; the body

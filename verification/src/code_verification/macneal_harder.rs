@@ -15,12 +15,10 @@
 
 use std::collections::BTreeMap;
 
-use impact_solver::element::{
-    element_response, gather, scatter_add, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
-};
+use impact_solver::element::{element_response, gather, scatter_add, Formulation};
 use impact_solver::material::Elastic;
 use impact_solver::mesh::Mesh;
-use impact_solver::scene::ElementKind;
+use impact_solver::model::AnyFormulation;
 use impact_solver::stiffness::LinearKernel;
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
@@ -201,24 +199,9 @@ pub fn patch(p: &BTreeMap<String, Value>) -> Result<RunData, String> {
     let kind = super::space_time::element(p)?;
     let mesh = patch_mesh();
     let elastic = Elastic::new(E, NU);
-    let err = |e: impact_solver::Error| e.to_string();
-    let metrics = match kind {
-        ElementKind::Q4Full => run_tests(
-            &FullQ4::new(&mesh, THICKNESS).map_err(err)?,
-            &elastic,
-            &mesh,
-        ),
-        ElementKind::Q4Sri => run_tests(
-            &SelectiveQ4::new(&mesh, THICKNESS).map_err(err)?,
-            &elastic,
-            &mesh,
-        ),
-        ElementKind::Q4OnePoint => run_tests(
-            &OnePointQ4::new(&mesh, THICKNESS, 0.05, elastic.p_modulus()).map_err(err)?,
-            &elastic,
-            &mesh,
-        ),
-    }?;
+    let any =
+        AnyFormulation::new(kind, &mesh, THICKNESS, 0.05, &elastic).map_err(|e| e.to_string())?;
+    let metrics = impact_solver::with_formulation!(&any, f => run_tests(f, &elastic, &mesh))?;
     Ok(RunData {
         metrics,
         ..Default::default()
