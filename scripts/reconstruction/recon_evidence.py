@@ -374,8 +374,9 @@ def page(ev: dict) -> str:
             f"{'yes' if s['all_12_within_10'] else 'no'} | {held_txt} | {surv} |")
     if "runs" in lm:
         r = lm["runs"]
-        lines += ["", f"Cost: {lm['evaluations']} evaluations, {r['executed']} runs "
-                      f"({r['cache_hits']} from the cache), {r['run_wall_s']} s of runs."]
+        lines += ["", f"This invocation: {lm['evaluations']} evaluations, {r['executed']} runs "
+                      f"executed ({r['cache_hits']} from the cache of earlier invocations), "
+                      f"{r['run_wall_s']} s of runs."]
     lines += ["", ev["answer"], "", "## Provenance", "",
               "| item | value |", "|---|---|"]
     lines += [f"| {k} | `{v}` |" for k, v in sorted(ev["provenance"].items())]
