@@ -114,10 +114,20 @@ pub fn simulate_to_dir_with(
     options: &RunOptions,
     say: &mut dyn FnMut(String),
 ) -> Result<Outcome> {
-    let scene = Scene::from_file(scene_path)?;
+    simulate_scene_to_dir_with(&Scene::from_file(scene_path)?, out_dir, options, say)
+}
+
+/// [`simulate_to_dir_with`] for a scene already read (the Python package's
+/// `simulate(..., out=DIR)` writes through this, so its files and protections are the CLI's).
+pub fn simulate_scene_to_dir_with(
+    scene: &Scene,
+    out_dir: &Path,
+    options: &RunOptions,
+    say: &mut dyn FnMut(String),
+) -> Result<Outcome> {
     check_out_dir(out_dir, options.force)?;
-    let estimate = Estimate::of(&scene);
-    check_budget(&scene, &estimate, options.max_memory)?;
+    let estimate = Estimate::of(scene);
+    check_budget(scene, &estimate, options.max_memory)?;
     say(format!("simulate: {}", estimate.describe()));
     if estimate.steps > MANY_STEPS {
         say(format!(
@@ -138,7 +148,7 @@ pub fn simulate_to_dir_with(
     let staging = staging_dir(out_dir);
     let what = format!("{} elements", crate::budget::count(estimate.elements));
     let result =
-        run_into(&scene, &staging, Progress::start(options.progress, &what)).and_then(|outcome| {
+        run_into(scene, &staging, Progress::start(options.progress, &what)).and_then(|outcome| {
             publish(&staging, out_dir)?;
             Ok(outcome)
         });

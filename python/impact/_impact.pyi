@@ -1,0 +1,28 @@
+"""Stub of the native module `impact._impact` (Rust, pyo3). Use the documented functions of
+`impact` instead; these are their building blocks."""
+
+import numpy as np
+import numpy.typing as npt
+
+TIMING_KEYS: list[str]
+
+class SceneError(ValueError): ...
+class RunError(RuntimeError): ...
+class VerifyError(ValueError): ...
+
+def read_scene(path: str) -> str: ...
+def simulate(
+    text: str,
+    source: str,
+    out: str | None = None,
+    threads: int | None = None,
+) -> tuple[str, list[str], list[npt.NDArray[np.float64]]]: ...
+def verify(
+    selectors: list[str],
+    filter: str | None = None,
+    light: bool = False,
+    jobs: int | None = None,
+    out: str | None = None,
+    report: bool = False,
+    root: str | None = None,
+) -> str: ...

@@ -1,0 +1,79 @@
+//! `simulate`: one scene, from its YAML text, through the solver's own run and output code.
+
+use std::path::{Path, PathBuf};
+
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+use impact_solver::{output, Outcome, Scene};
+
+use crate::errors::to_py;
+
+/// Reads a scene file's text (the CLI's message when it cannot).
+#[pyfunction]
+pub fn read_scene(path: PathBuf) -> PyResult<String> {
+    std::fs::read_to_string(&path)
+        .map_err(|source| to_py(impact_solver::Error::ReadScene { path, source }))
+}
+
+/// A finished run: `summary.json`'s text and the history's columns in file order.
+type NativeRun<'py> = (String, Vec<String>, Vec<Bound<'py, PyArray1<f64>>>);
+
+/// Parses and validates `text` (`source` names it in messages), runs it without the GIL on
+/// `threads` threads (None: the global pool, one thread per core) and, with `out`, writes the
+/// CLI's files there.
+#[pyfunction]
+#[pyo3(signature = (text, source, out=None, threads=None))]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    text: &str,
+    source: PathBuf,
+    out: Option<PathBuf>,
+    threads: Option<usize>,
+) -> PyResult<NativeRun<'py>> {
+    let pool = match threads {
+        Some(0) => return Err(PyValueError::new_err("threads must be >= 1 (or None)")),
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyValueError::new_err(format!("cannot start {n} threads: {e}")))?,
+        ),
+        None => None,
+    };
+    let outcome = py.detach(|| {
+        let scene = Scene::from_yaml(text, &source)?;
+        let run = || run(&scene, out.as_deref());
+        match &pool {
+            Some(pool) => pool.install(run),
+            None => run(),
+        }
+    });
+    let outcome = outcome.map_err(to_py)?;
+    let summary = serde_json::to_string_pretty(&outcome.summary)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let history = &outcome.history;
+    let arrays = (0..history.columns.len())
+        .map(|c| {
+            let column: Vec<f64> = history
+                .values
+                .iter()
+                .skip(c)
+                .step_by(history.columns.len())
+                .copied()
+                .collect();
+            PyArray1::from_vec(py, column)
+        })
+        .collect();
+    Ok((summary, history.columns.clone(), arrays))
+}
+
+fn run(scene: &Scene, out: Option<&Path>) -> impact_solver::Result<Outcome> {
+    match out {
+        Some(dir) => {
+            output::simulate_scene_to_dir_with(scene, dir, &Default::default(), &mut |_| {})
+        }
+        None => impact_solver::simulate(scene, &mut impact_solver::Quiet),
+    }
+}

@@ -1,0 +1,30 @@
+"""Shared fixtures of the `impact` package's tests: the repository, the `impact` CLI built
+from the same sources (target/release/impact, or $IMPACT_BIN), and small scenes."""
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+# Small elasto-plastic impact (20 x 4 q4-sri, fixed dt, probe A): ~0.05 s a run.
+SMALL = ROOT / "scripts" / "ci-scenes" / "impact-plastic.yaml"
+
+
+@pytest.fixture(scope="session")
+def cli() -> Path:
+    """The `impact` command of this checkout (built by .ci/run before the tests)."""
+    path = Path(os.environ.get("IMPACT_BIN", ROOT / "target" / "release" / "impact"))
+    if not path.exists():
+        subprocess.run(
+            ["cargo", "build", "--release", "--quiet", "-p", "impact-verification", "--bin", "impact"],
+            cwd=ROOT, check=True,
+        )
+    return path
+
+
+@pytest.fixture(scope="session")
+def small_scene() -> Path:
+    return SMALL

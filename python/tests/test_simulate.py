@@ -1,0 +1,124 @@
+"""`impact.simulate` against the `impact simulate` command of the same checkout: the summary
+and history bit for bit (wall-clock keys aside), the files written with `out=`, scenes given
+as a path, YAML text or a dict, scene errors with the CLI's message, threads, and the GIL
+released during a run."""
+from __future__ import annotations
+
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+import yaml
+from helpers import (assert_same_history, read_history, read_summary,
+                     without_timing)
+
+import impact
+
+
+@pytest.fixture(scope="module")
+def cli_run(cli, small_scene, tmp_path_factory):
+    out = tmp_path_factory.mktemp("cli")
+    subprocess.run([cli, "simulate", small_scene, "--out", out, "--quiet"], check=True)
+    return out
+
+
+def test_summary_and_history_equal_the_cli_bit_for_bit(cli_run, small_scene):
+    run = impact.simulate(small_scene)
+    cli_summary = read_summary(cli_run / "summary.json")
+    assert list(run.summary) == list(cli_summary)
+    assert without_timing(run.summary) == without_timing(cli_summary)
+    assert run.summary["impulse_Ns"] > 0
+    assert_same_history(run.history, read_history(cli_run / "history.csv"))
+    assert "time_s" in run.history and "A_von_mises_Pa" in run.history
+
+
+def test_out_writes_the_cli_files(cli_run, small_scene, tmp_path):
+    impact.simulate(str(small_scene), out=tmp_path / "py")
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == ["history.csv", "summary.json"]
+    assert (tmp_path / "py" / "history.csv").read_bytes() == (cli_run / "history.csv").read_bytes()
+    assert without_timing(read_summary(tmp_path / "py" / "summary.json")) == without_timing(
+        read_summary(cli_run / "summary.json"))
+
+
+def test_yaml_text_and_dict_scenes_equal_the_file(small_scene):
+    text = small_scene.read_text()
+    from_file = impact.simulate(small_scene)
+    for scene in (text, yaml.safe_load(text)):
+        run = impact.simulate(scene)
+        assert without_timing(run.summary) == without_timing(from_file.summary)
+        assert_same_history(run.history, from_file.history)
+
+
+def test_to_pandas_has_the_history_columns(small_scene):
+    run = impact.simulate(small_scene)
+    frame = run.to_pandas()
+    assert list(frame.columns) == list(run.history)
+    assert np.array_equal(frame["contact_force_N"].to_numpy(), run.history["contact_force_N"])
+
+
+def test_threads_do_not_change_the_bits(small_scene):
+    one = impact.simulate(small_scene, threads=1)
+    two = impact.simulate(small_scene, threads=2)
+    assert without_timing(one.summary) == without_timing(two.summary)
+    assert_same_history(one.history, two.history)
+    with pytest.raises(ValueError, match="threads"):
+        impact.simulate(small_scene, threads=0)
+
+
+def test_scene_errors_carry_the_cli_message(cli, small_scene, tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(small_scene.read_text().replace("density: 7850.0", "density: -7850.0"))
+    cli_err = subprocess.run([cli, "simulate", bad, "--out", tmp_path / "o", "--quiet"],
+                             capture_output=True, text=True)
+    assert cli_err.returncode == 2
+    with pytest.raises(impact.SceneError) as e:
+        impact.simulate(bad)
+    assert cli_err.stderr.strip() == f"error: {e.value}"
+    assert str(e.value).startswith(f"{bad}:5:")
+    assert "material.density = -7850" in str(e.value)
+    assert not (tmp_path / "o").exists()
+
+
+def test_dict_and_text_errors_name_their_line(small_scene):
+    scene = yaml.safe_load(small_scene.read_text())
+    scene["material"]["poisson_ratio"] = 0.7
+    with pytest.raises(impact.SceneError, match=r"^<dict>:\d+:\d+: material.poisson_ratio = 0.7"):
+        impact.simulate(scene)
+    text = small_scene.read_text().rstrip("\n") + "\nspeed_of_light: 3.0e8\n"
+    line = text.count("\n")
+    with pytest.raises(impact.SceneError, match=rf"^<string>:{line}:\d+: .*speed_of_light"):
+        impact.simulate(text)
+    with pytest.raises(impact.SceneError, match="cannot read the scene"):
+        impact.simulate("no/such/scene.yaml")
+    with pytest.raises(TypeError):
+        impact.simulate(42)
+
+
+def test_the_gil_is_released_during_a_run(small_scene):
+    """Two runs in two threads while this thread counts: with the GIL held by a run, this
+    thread would stand still for the whole run; released, it keeps ticking (its longest pause
+    is the interpreter's switch interval, 5 ms, plus scheduling), and both runs overlap."""
+    scene = yaml.safe_load(small_scene.read_text())
+    scene["time"]["end"] = 5.0e-3  # a fixed end: 10000 steps, ~0.3 s, long enough to watch
+    spans: list[tuple[float, float]] = []
+
+    def run():
+        t0 = time.perf_counter()
+        impact.simulate(scene, threads=1)
+        spans.append((t0, time.perf_counter()))
+
+    workers = [threading.Thread(target=run) for _ in range(2)]
+    ticks = [time.perf_counter()]
+    for w in workers:
+        w.start()
+    while any(w.is_alive() for w in workers):
+        ticks.append(time.perf_counter())
+    ticks.append(time.perf_counter())
+    shortest = min(e - s for s, e in spans)
+    longest_pause = max(np.diff(ticks))
+    assert shortest > 0.05, spans
+    assert longest_pause < 0.5 * shortest, (longest_pause, spans)
+    (s1, e1), (s2, e2) = spans
+    assert min(e1, e2) > max(s1, s2), f"runs did not overlap: {spans}"
