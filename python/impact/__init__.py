@@ -7,6 +7,8 @@ names its unit (``time_s``, ``contact_force_N``, ``impulse_Ns``, ...).
 - :func:`simulate` runs one scene (a path, YAML text or a dict) and returns a :class:`Run`
   (``summary`` as in ``summary.json``, ``history`` as numpy arrays named like the columns of
   ``history.csv``), optionally writing the files of ``impact simulate``.
+- :func:`sweep` runs one scene under many overrides (dotted scene keys) on a local pool or a
+  Dask cluster and returns one row per run.
 - :func:`verify` runs the verification matrix and returns its results as data.
 
 Scene errors raise :class:`SceneError` with the message of the ``impact`` command
@@ -17,6 +19,7 @@ from __future__ import annotations
 
 from ._impact import TIMING_KEYS, RunError, SceneError, VerifyError
 from ._run import Run, simulate
+from ._sweep import sweep
 from ._verify import Verification, verify
 
 __all__ = [
@@ -27,5 +30,6 @@ __all__ = [
     "Verification",
     "VerifyError",
     "simulate",
+    "sweep",
     "verify",
 ]

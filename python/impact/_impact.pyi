@@ -16,6 +16,7 @@ def simulate(
     source: str,
     out: str | None = None,
     threads: int | None = None,
+    overrides: str | None = None,
 ) -> tuple[str, list[str], list[npt.NDArray[np.float64]]]: ...
 def verify(
     selectors: list[str],

@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import json
 import os
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
 from . import _impact
-from ._scene import SceneLike, scene_text
+from ._scene import SceneLike, overrides_json, scene_text
 
 if TYPE_CHECKING:
     import pandas
@@ -53,6 +53,7 @@ def simulate(
     *,
     out: str | os.PathLike[str] | None = None,
     threads: int | None = None,
+    overrides: Mapping[str, Any] | None = None,
 ) -> Run:
     """Runs one scene and returns its :class:`Run`.
 
@@ -68,6 +69,8 @@ def simulate(
             several threads only for costly kernels on large meshes (elasto-plastic, >= 4096
             elements); every other run uses one thread whatever this says. Results are
             bit-identical for every thread count. None: one per core (as the CLI).
+        overrides: values set at dotted scene keys before validation, with the rules of a
+            scene file, e.g. ``{"material.plasticity.yield_stress": 2.0e8}`` (Pa).
 
     The GIL is released while the solver runs, so threads of a pool run in parallel.
 
@@ -86,5 +89,6 @@ def simulate(
         source,
         out=None if out is None else os.fspath(out),
         threads=threads,
+        overrides=overrides_json(overrides),
     )
     return Run(json.loads(summary), dict(zip(columns, arrays)))

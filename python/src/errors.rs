@@ -32,7 +32,7 @@ pub fn to_py(e: impact_solver::Error) -> PyErr {
     use impact_solver::Error as E;
     let message = e.to_string();
     match e {
-        E::ReadScene { .. } | E::ParseScene { .. } | E::InvalidScene(_) => {
+        E::ReadScene { .. } | E::ParseScene { .. } | E::InvalidScene(_) | E::Override { .. } => {
             SceneError::new_err(message)
         }
         E::Run { .. } => RunError::new_err(message),

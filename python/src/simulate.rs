@@ -6,6 +6,7 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use impact_solver::overrides::Overrides;
 use impact_solver::{output, Outcome, Scene};
 
 use crate::errors::to_py;
@@ -20,18 +21,25 @@ pub fn read_scene(path: PathBuf) -> PyResult<String> {
 /// A finished run: `summary.json`'s text and the history's columns in file order.
 type NativeRun<'py> = (String, Vec<String>, Vec<Bound<'py, PyArray1<f64>>>);
 
-/// Parses and validates `text` (`source` names it in messages), runs it without the GIL on
-/// `threads` threads (None: the global pool, one thread per core) and, with `out`, writes the
-/// CLI's files there.
+/// Parses `text` (`source` names it in messages), sets `overrides` (a JSON object of dotted
+/// scene keys, see `Scene::from_yaml_with`), validates, runs it without the GIL on `threads`
+/// threads (None: the global pool, one thread per core) and, with `out`, writes the CLI's
+/// files there.
 #[pyfunction]
-#[pyo3(signature = (text, source, out=None, threads=None))]
+#[pyo3(signature = (text, source, out=None, threads=None, overrides=None))]
 pub fn simulate<'py>(
     py: Python<'py>,
     text: &str,
     source: PathBuf,
     out: Option<PathBuf>,
     threads: Option<usize>,
+    overrides: Option<&str>,
 ) -> PyResult<NativeRun<'py>> {
+    let overrides: Overrides = match overrides {
+        Some(json) => serde_json::from_str(json)
+            .map_err(|e| PyValueError::new_err(format!("overrides: {e}")))?,
+        None => Overrides::new(),
+    };
     let pool = match threads {
         Some(0) => return Err(PyValueError::new_err("threads must be >= 1 (or None)")),
         Some(n) => Some(
@@ -43,7 +51,7 @@ pub fn simulate<'py>(
         None => None,
     };
     let outcome = py.detach(|| {
-        let scene = Scene::from_yaml(text, &source)?;
+        let scene = Scene::from_yaml_with(text, &overrides, &source)?;
         let run = || run(&scene, out.as_deref());
         match &pool {
             Some(pool) => pool.install(run),

@@ -122,3 +122,18 @@ def test_the_gil_is_released_during_a_run(small_scene):
     assert longest_pause < 0.5 * shortest, (longest_pause, spans)
     (s1, e1), (s2, e2) = spans
     assert min(e1, e2) > max(s1, s2), f"runs did not overlap: {spans}"
+
+
+def test_overrides_equal_the_edited_scene(small_scene):
+    text = small_scene.read_text()
+    edited = text.replace("yield_stress: 250.0e6", "yield_stress: 2.1e8").replace(
+        "mesh: {nx: 20,", "mesh: {nx: 24,")
+    assert edited != text
+    run = impact.simulate(small_scene, overrides={"material.plasticity.yield_stress": 2.1e8,
+                                                  "mesh.nx": np.int64(24)})
+    want = impact.simulate(edited)
+    assert without_timing(run.summary) == without_timing(want.summary)
+    assert_same_history(run.history, want.history)
+    assert run.summary["n_elements"] == 24 * 4
+    with pytest.raises(impact.SceneError, match="material.density"):
+        impact.simulate(small_scene, overrides={"material.density": -1.0})
