@@ -6,6 +6,7 @@ pub mod baseline;
 pub mod bench_report;
 pub mod builtins;
 pub mod case;
+pub mod case_progress;
 pub mod check;
 pub mod code_verification;
 pub mod diff;

@@ -259,11 +259,23 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         .build()
         .map_err(|e| vec![format!("cannot start {} threads: {e}", opts.jobs)])?;
     let mut slots: Vec<Option<JobResult>> = vec![None; unique.len()];
+    let case_progress = crate::case_progress::CaseProgress::new(
+        chosen
+            .iter()
+            .zip(&case_jobs)
+            .map(|(c, jobs_of)| {
+                let runs = jobs_of.values().filter_map(|j| j.as_ref().ok().copied());
+                (format!("{}/{}", c.suite, c.name), runs.collect())
+            })
+            .collect(),
+        unique.len(),
+    );
     let finished: Vec<(usize, JobResult)> = pool.install(|| {
         order
             .par_iter()
             .map(|&i| {
                 let r = unique[i].run();
+                case_progress.run_done(i, bar.as_ref());
                 if let Some(b) = &bar {
                     b.inc(1);
                 }
