@@ -21,7 +21,7 @@ use impact_solver::with_formulation;
 use impact_solver::History;
 use serde_json::Value;
 
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 pub const NAMES: [&str; 6] = [
     "hertz-law",

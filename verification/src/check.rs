@@ -205,7 +205,7 @@ fn scene_name<'a>(m: &'a MeasureFile, ctx: &'a Context) -> Result<&'a str, Strin
         .ok_or_else(|| "the measure names no scene and the case has not exactly one".to_string())
 }
 
-fn job<'a>(name: &str, ctx: &'a Context) -> Result<&'a crate::jobs::RunData, String> {
+fn job<'a>(name: &str, ctx: &'a Context) -> Result<&'a crate::data::RunData, String> {
     match ctx.results.get(name) {
         None => Err(format!("no scene {name:?} in this case")),
         Some(Err(e)) => Err(format!("scene {name} failed: {e}")),

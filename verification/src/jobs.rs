@@ -8,7 +8,6 @@ use std::sync::Arc;
 use impact_solver::integrator::{FieldFrame, Observer};
 use impact_solver::material::FlowCurve;
 use impact_solver::scene::{DtChoice, End, Load, MidSpanNode, Model, Scene};
-use impact_solver::History;
 use serde_json::Value;
 
 use crate::case::{Case, Loc, Refine, SceneSpec};
@@ -21,23 +20,7 @@ pub const TIMING_KEYS: [&str; 4] = [
     "ns_per_element_step",
 ];
 
-/// What a job produced: named scalars, histories, and the modelling for the report.
-#[derive(Debug, Clone, Default)]
-pub struct RunData {
-    pub metrics: BTreeMap<String, f64>,
-    /// Histories by name; a scene run has one named "" (its history.csv).
-    pub histories: BTreeMap<String, History>,
-    /// Modelling description (mesh, element, dt, contact law, ...).
-    pub info: BTreeMap<String, String>,
-    /// summary.json without wall times (scene runs only).
-    pub summary: Option<Value>,
-}
-
-impl RunData {
-    pub fn history(&self) -> Option<&History> {
-        self.histories.get("")
-    }
-}
+pub use crate::data::RunData;
 
 pub type JobResult = Result<Arc<RunData>, String>;
 

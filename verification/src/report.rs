@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::runner::Repo;
+use crate::repo::Repo;
 
 /// Writes environment.json (commit, rustc, machine, date, wall time) next to results.json.
 pub fn write_environment(repo: &Repo, out: &Path, wall_s: f64, jobs: usize) -> std::io::Result<()> {
