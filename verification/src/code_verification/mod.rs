@@ -7,6 +7,7 @@ pub mod driver;
 pub mod macneal_harder;
 pub mod manufactured;
 pub mod orders;
+pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
 
@@ -17,11 +18,12 @@ use serde_json::Value;
 use crate::jobs::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 4] = [
+pub const NAMES: [&str; 5] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
     "macneal-harder-patch",
+    "rigid-target",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -31,6 +33,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "mms-time" => space_time::time(p),
         "impactor-spring" => spring::spring(p),
         "macneal-harder-patch" => macneal_harder::patch(p),
+        "rigid-target" => rigid_target::rigid_target(p),
         _ => return None,
     })
 }
