@@ -249,7 +249,7 @@ fn overlay(before: &Path, now: &Path, column: &str, name: &str, dir: &Path) -> R
             .1;
         Ok(t.iter().copied().zip(v.iter().copied()).collect())
     };
-    let svg = crate::report::svg_plot(
+    let svg = crate::plot::svg_plot(
         &format!("{name}: {column}"),
         "time_s",
         column,

@@ -17,6 +17,7 @@ pub mod gci;
 pub mod jobs;
 pub mod lint;
 pub mod markdown;
+pub mod plot;
 pub mod repo;
 pub mod report;
 pub mod runner;

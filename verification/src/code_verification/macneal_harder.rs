@@ -23,7 +23,7 @@ use impact_solver::stiffness::LinearKernel;
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 /// E (Pa), nu and the out-of-plane thickness (m) of the benchmark.
 const E: f64 = 1.0e6;

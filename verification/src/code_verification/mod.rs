@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 
 use serde_json::Value;
 
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 /// The builtins of this module.
 pub const NAMES: [&str; 5] = [

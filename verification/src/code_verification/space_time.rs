@@ -14,7 +14,7 @@ use super::driver::{self, mapped_mesh, weighted_l2, Steps};
 use super::manufactured::Manufactured;
 use super::orders::{difference_orders, largest_step, pair_orders};
 use super::{param, param_levels};
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
 

@@ -13,7 +13,7 @@ use serde_json::Value;
 
 use super::orders::{largest_step, pair_orders};
 use super::param;
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 /// Largest displacement and velocity errors over one period with `n` steps, relative to the
 /// amplitudes `v0 / w` and `v0`.
