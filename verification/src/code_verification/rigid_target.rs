@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use serde_json::Value;
 
 use super::param;
-use crate::jobs::RunData;
+use crate::data::RunData;
 
 /// Indentation (m) as a function of the force per unit width (N/m).
 type Law = Box<dyn Fn(f64) -> f64>;
