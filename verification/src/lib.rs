@@ -21,5 +21,6 @@ pub mod plot;
 pub mod repo;
 pub mod report;
 pub mod runner;
+pub mod shard;
 pub mod snapshot;
 pub mod verdict;

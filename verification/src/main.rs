@@ -84,6 +84,14 @@ enum Command {
         /// tolerance, and the report opens with "What changed".
         #[arg(long)]
         baseline: Option<PathBuf>,
+        /// Run only shard K of N (e.g. 2/4): a deterministic, cost-balanced share of the
+        /// jobs; writes their results to <out>/shard.json for --merge.
+        #[arg(long, value_name = "K/N", conflicts_with = "report")]
+        shard: Option<impact_verification::shard::Shard>,
+        /// Merge the shard folders (all N shards of one run) into the results a single run
+        /// writes (results.json, junit.xml, matrix.txt, runs/, with --report the report).
+        #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["shard", "selectors", "filter", "light"])]
+        merge: Vec<PathBuf>,
     },
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
     /// reasons, provenance of reference files.
@@ -157,12 +165,21 @@ fn main() -> ExitCode {
             reconstruction,
             root,
             baseline,
+            shard,
+            merge,
         } => {
             let report = report.then_some(ReportOptions {
                 benchmarks,
                 reconstruction,
             });
-            verify(selectors, filter, jobs, out, light, report, root, baseline)
+            let split = match (shard, merge.is_empty()) {
+                (Some(s), _) => Split::Shard(s),
+                (None, false) => Split::Merge(merge),
+                (None, true) => Split::Whole,
+            };
+            verify(
+                selectors, filter, jobs, out, light, report, root, baseline, split,
+            )
         }
         Command::Lint { root } => lint(root),
         Command::Diff { run_a, run_b, tol } => {
@@ -246,6 +263,13 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
     }
 }
 
+/// The whole matrix, one shard of it, or the merge of shards (`impact_verification::shard`).
+enum Split {
+    Whole,
+    Shard(impact_verification::shard::Shard),
+    Merge(Vec<PathBuf>),
+}
+
 #[allow(clippy::too_many_arguments)]
 fn verify(
     selectors: Vec<String>,
@@ -256,6 +280,7 @@ fn verify(
     report: Option<ReportOptions>,
     root: Option<PathBuf>,
     baseline: Option<PathBuf>,
+    split: Split,
 ) -> ExitCode {
     let repo = match repo(root) {
         Ok(r) => r,
@@ -273,7 +298,31 @@ fn verify(
         include_heavy: !light,
         progress: std::io::stderr().is_terminal(),
     };
-    let outcome = match runner::verify(&repo, &opts) {
+    let outcome = match split {
+        Split::Whole => runner::verify(&repo, &opts),
+        Split::Merge(dirs) => impact_verification::shard::merge(&repo, &dirs, jobs),
+        Split::Shard(shard) => {
+            return match impact_verification::shard::run_shard(&repo, &opts, shard, &out) {
+                Ok((mine, all)) => {
+                    println!(
+                        "shard {}/{}: ran {mine} of the {all} jobs; wrote {} ({:.1} s); merge with impact verify --merge DIR...",
+                        shard.index,
+                        shard.count,
+                        out.join(impact_verification::shard::SHARD_FILE).display(),
+                        started.elapsed().as_secs_f64()
+                    );
+                    ExitCode::SUCCESS
+                }
+                Err(problems) => {
+                    for p in problems {
+                        eprintln!("error: {p}");
+                    }
+                    ExitCode::from(2)
+                }
+            };
+        }
+    };
+    let outcome = match outcome {
         Ok(o) => o,
         Err(problems) => {
             for p in problems {

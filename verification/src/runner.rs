@@ -143,6 +143,19 @@ fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
 
 /// Runs the selected cases. Errors: cases that do not load or do not lint.
 pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
+    let cases = load(repo)?;
+    let plan = plan(&cases, opts)?;
+    let all: Vec<usize> = (0..plan.jobs.len()).collect();
+    let finished = execute(&plan, &all, opts.jobs, opts.progress).map_err(|e| vec![e])?;
+    let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
+    for (i, r) in finished {
+        slots[i] = Some(r);
+    }
+    Ok(assemble(repo, &plan, slots, &opts.filter))
+}
+
+/// The repository's cases, when they all load and lint clean.
+pub fn load(repo: &Repo) -> Result<Vec<Case>, Vec<String>> {
     let (cases, errors) = crate::case::load_cases(&repo.cases_dir());
     let mut problems: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
     problems.extend(
@@ -153,6 +166,20 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
     if !problems.is_empty() {
         return Err(problems);
     }
+    Ok(cases)
+}
+
+/// The selected cases and their jobs, deduplicated by content (what a run or a shard of it
+/// executes; `crate::shard` shares `jobs` out by cost).
+pub struct Plan<'a> {
+    pub cases: Vec<&'a Case>,
+    pub jobs: Vec<Job>,
+    /// Per case: scene name -> index into `jobs` (or why its jobs could not be made).
+    case_jobs: Vec<BTreeMap<String, Result<usize, String>>>,
+}
+
+/// Selects the cases of `opts` and makes their jobs. Errors: no case matches.
+pub fn plan<'a>(cases: &'a [Case], opts: &Options) -> Result<Plan<'a>, Vec<String>> {
     let chosen: Vec<&Case> = cases
         .iter()
         .filter(|c| selected(c, opts))
@@ -204,17 +231,26 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         }
         case_jobs.push(map);
     }
+    Ok(Plan {
+        cases: chosen,
+        jobs: unique,
+        case_jobs,
+    })
+}
 
-    // Largest first; results land in their own slot, whatever the thread.
-    let mut order: Vec<usize> = (0..unique.len()).collect();
-    order.sort_by(|&a, &b| {
-        unique[b]
-            .cost()
-            .total_cmp(&unique[a].cost())
-            .then(a.cmp(&b))
-    });
-    let bar = if opts.progress {
-        let b = ProgressBar::new(unique.len() as u64);
+/// Runs the jobs `which` on `threads` threads, largest first; each result is returned with
+/// its index, whatever the thread that ran it.
+pub fn execute(
+    plan: &Plan,
+    which: &[usize],
+    threads: usize,
+    progress: bool,
+) -> Result<Vec<(usize, JobResult)>, String> {
+    let jobs = &plan.jobs;
+    let mut order = which.to_vec();
+    order.sort_by(|&a, &b| jobs[b].cost().total_cmp(&jobs[a].cost()).then(a.cmp(&b)));
+    let bar = if progress {
+        let b = ProgressBar::new(order.len() as u64);
         b.set_style(
             ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
@@ -225,26 +261,27 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         None
     };
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.jobs.max(1))
+        .num_threads(threads.max(1))
         .build()
-        .map_err(|e| vec![format!("cannot start {} threads: {e}", opts.jobs)])?;
-    let mut slots: Vec<Option<JobResult>> = vec![None; unique.len()];
+        .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+    let mine: BTreeSet<usize> = which.iter().copied().collect();
     let case_progress = crate::case_progress::CaseProgress::new(
-        chosen
+        plan.cases
             .iter()
-            .zip(&case_jobs)
+            .zip(&plan.case_jobs)
             .map(|(c, jobs_of)| {
                 let runs = jobs_of.values().filter_map(|j| j.as_ref().ok().copied());
+                let runs = runs.filter(|j| mine.contains(j));
                 (format!("{}/{}", c.suite, c.name), runs.collect())
             })
             .collect(),
-        unique.len(),
+        jobs.len(),
     );
     let finished: Vec<(usize, JobResult)> = pool.install(|| {
         order
             .par_iter()
             .map(|&i| {
-                let r = unique[i].run();
+                let r = jobs[i].run();
                 case_progress.run_done(i, bar.as_ref());
                 if let Some(b) = &bar {
                     b.inc(1);
@@ -256,27 +293,34 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    for (i, r) in finished {
-        slots[i] = Some(r);
-    }
+    Ok(finished)
+}
 
+/// The matrix from the plan's job results (`slots[i]`: the result of `plan.jobs[i]`; None:
+/// not run): the checks evaluated case by case, whoever ran the jobs.
+pub fn assemble(
+    repo: &Repo,
+    plan: &Plan,
+    slots: Vec<Option<JobResult>>,
+    filter: &Option<String>,
+) -> Outcome {
     let mut matrix = Matrix {
         counts: Counts::default(),
         cases: Vec::new(),
     };
     let mut data = BTreeMap::new();
-    for (case, jobs_of) in chosen.iter().zip(case_jobs) {
+    for (case, jobs_of) in plan.cases.iter().zip(&plan.case_jobs) {
         let mut results: BTreeMap<String, JobResult> = BTreeMap::new();
         let mut setup_error = None;
         for (name, idx) in jobs_of {
             match idx {
                 Ok(i) => {
                     results.insert(
-                        name,
-                        slots[i].clone().unwrap_or_else(|| Err("not run".into())),
+                        name.clone(),
+                        slots[*i].clone().unwrap_or_else(|| Err("not run".into())),
                     );
                 }
-                Err(e) => setup_error = Some(e),
+                Err(e) => setup_error = Some(e.clone()),
             }
         }
         let series: BTreeMap<String, crate::case::SeriesSpec> = case
@@ -301,7 +345,7 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         let mut series_metrics: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         for k in &case.file.checks {
             let k = &k.value;
-            if !check_matches(case, &k.id, &opts.filter) {
+            if !check_matches(case, &k.id, filter) {
                 continue;
             }
             if let Some(q) = k.measure.value.series_quantity() {
@@ -327,7 +371,7 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
             .checks
             .iter()
             .map(|k| &k.value)
-            .filter(|k| check_matches(case, &k.id, &opts.filter))
+            .filter(|k| check_matches(case, &k.id, filter))
             .collect();
         let discrimination = if case_skip.is_none() && setup_error.is_none() {
             crate::discriminate::rows(case, &evaluated, &ctx)
@@ -395,7 +439,7 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
     matrix.counts = Counts::from_tally(&matrix.tally());
-    Ok(Outcome { matrix, data })
+    Outcome { matrix, data }
 }
 
 /// Compact number for the matrix.
