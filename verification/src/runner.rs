@@ -323,123 +323,155 @@ pub fn assemble(
                 Err(e) => setup_error = Some(e.clone()),
             }
         }
-        let series: BTreeMap<String, crate::case::SeriesSpec> = case
-            .file
-            .series
-            .iter()
-            .map(|(k, v)| (k.clone(), v.value.clone()))
-            .collect();
-        let default_scene = if case.file.scenes.len() == 1 {
-            case.file.scenes.keys().next().map(|s| s.as_str())
-        } else {
-            None
-        };
-        let ctx = Context {
-            results: &results,
-            series: &series,
-            root: &repo.root,
-            default_scene,
-        };
-        let case_skip = case.file.skip.as_ref().filter(|s| s.value.is_skip());
-        let mut checks = Vec::new();
-        let mut series_metrics: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-        for k in &case.file.checks {
-            let k = &k.value;
-            if !check_matches(case, &k.id, filter) {
-                continue;
-            }
-            if let Some(q) = k.measure.value.series_quantity() {
-                series_metrics
-                    .entry(q.series.clone())
-                    .or_default()
-                    .insert(q.metric.clone());
-            }
-            let mut r = check::evaluate(k, &ctx);
-            if let Some(skip) = case_skip {
-                r.status = Status::Skip;
-                r.message = format!("case skipped: {}", skip.value.reason().unwrap_or(""));
-                r.computed = None;
-                r.error = None;
-            } else if let Some(e) = &setup_error {
-                r.status = Status::Fail;
-                r.message = e.clone();
-            }
-            checks.push(r);
-        }
-        let evaluated: Vec<&crate::case::CheckFile> = case
-            .file
-            .checks
-            .iter()
-            .map(|k| &k.value)
-            .filter(|k| check_matches(case, &k.id, filter))
-            .collect();
-        let discrimination = if case_skip.is_none() && setup_error.is_none() {
-            crate::discriminate::rows(case, &evaluated, &ctx)
-        } else {
-            Vec::new()
-        };
-        let mut series_data = BTreeMap::new();
-        for (name, metrics) in series_metrics {
-            let Some(spec) = series.get(&name) else {
-                continue;
-            };
-            let mut m = BTreeMap::new();
-            for metric in metrics {
-                if let Ok((_, values, _)) = check::series_values(&name, &metric, &ctx) {
-                    m.insert(metric, values);
-                }
-            }
-            series_data.insert(
-                name,
-                SeriesData {
-                    refine: spec.refine,
-                    levels: spec.levels.clone(),
-                    metrics: m,
-                },
-            );
-        }
-        let mut modelling = BTreeMap::new();
-        let mut metrics = BTreeMap::new();
-        let mut job_errors = BTreeMap::new();
-        for (name, r) in &results {
-            match r {
-                Ok(d) => {
-                    if !d.info.is_empty() {
-                        modelling.insert(name.clone(), d.info.clone());
-                    }
-                    metrics.insert(name.clone(), d.metrics.clone());
-                }
-                Err(e) => {
-                    job_errors.insert(name.clone(), e.clone());
-                }
-            }
-        }
-        if let Some(e) = setup_error {
-            job_errors.insert("(setup)".into(), e);
-        }
-        matrix.cases.push(CaseResult {
-            suite: case.suite.clone(),
-            case: case.name.clone(),
-            id: case.id().to_string(),
-            title: case.file.title.clone(),
-            requirement_id: case.file.requirement.id.value.clone(),
-            requirement: case.file.requirement.text.value.clone(),
-            category: case.file.category,
-            heavy: case.file.heavy,
-            problem: case.file.problem.clone().unwrap_or_default(),
-            modelling,
-            metrics,
-            job_errors,
-            series: series_data,
-            plots: case.file.plots.clone(),
-            checks,
-            wrong_models: crate::discriminate::titles(case),
-            discrimination,
-        });
+        matrix
+            .cases
+            .push(case_result(repo, case, &results, setup_error, filter));
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
     matrix.counts = Counts::from_tally(&matrix.tally());
     Outcome { matrix, data }
+}
+
+/// One case's row of the matrix: its checks evaluated on its runs' `results` (all FAIL with
+/// `setup_error` when its jobs could not be made, SKIP when the case is skipped), the
+/// discrimination by its wrong models, its series and what its runs report.
+fn case_result(
+    repo: &Repo,
+    case: &Case,
+    results: &BTreeMap<String, JobResult>,
+    setup_error: Option<String>,
+    filter: &Option<String>,
+) -> CaseResult {
+    let series: BTreeMap<String, crate::case::SeriesSpec> = case
+        .file
+        .series
+        .iter()
+        .map(|(k, v)| (k.clone(), v.value.clone()))
+        .collect();
+    let default_scene = if case.file.scenes.len() == 1 {
+        case.file.scenes.keys().next().map(|s| s.as_str())
+    } else {
+        None
+    };
+    let ctx = Context {
+        results,
+        series: &series,
+        root: &repo.root,
+        default_scene,
+    };
+    let case_skip = case.file.skip.as_ref().filter(|s| s.value.is_skip());
+    let evaluated: Vec<&crate::case::CheckFile> = case
+        .file
+        .checks
+        .iter()
+        .map(|k| &k.value)
+        .filter(|k| check_matches(case, &k.id, filter))
+        .collect();
+    let mut checks = Vec::new();
+    let mut series_metrics: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for k in &evaluated {
+        if let Some(q) = k.measure.value.series_quantity() {
+            series_metrics
+                .entry(q.series.clone())
+                .or_default()
+                .insert(q.metric.clone());
+        }
+        let mut r = check::evaluate(k, &ctx);
+        if let Some(skip) = case_skip {
+            r.status = Status::Skip;
+            r.message = format!("case skipped: {}", skip.value.reason().unwrap_or(""));
+            r.computed = None;
+            r.error = None;
+        } else if let Some(e) = &setup_error {
+            r.status = Status::Fail;
+            r.message = e.clone();
+        }
+        checks.push(r);
+    }
+    let discrimination = if case_skip.is_none() && setup_error.is_none() {
+        crate::discriminate::rows(case, &evaluated, &ctx)
+    } else {
+        Vec::new()
+    };
+    let (modelling, metrics, mut job_errors) = run_reports(results);
+    if let Some(e) = setup_error {
+        job_errors.insert("(setup)".into(), e);
+    }
+    CaseResult {
+        suite: case.suite.clone(),
+        case: case.name.clone(),
+        id: case.id().to_string(),
+        title: case.file.title.clone(),
+        requirement_id: case.file.requirement.id.value.clone(),
+        requirement: case.file.requirement.text.value.clone(),
+        category: case.file.category,
+        heavy: case.file.heavy,
+        problem: case.file.problem.clone().unwrap_or_default(),
+        modelling,
+        metrics,
+        job_errors,
+        series: series_data(series_metrics, &series, &ctx),
+        plots: case.file.plots.clone(),
+        checks,
+        wrong_models: crate::discriminate::titles(case),
+        discrimination,
+    }
+}
+
+/// The values of each series' metrics that the checks use, with the series' levels.
+fn series_data(
+    series_metrics: BTreeMap<String, BTreeSet<String>>,
+    series: &BTreeMap<String, crate::case::SeriesSpec>,
+    ctx: &Context,
+) -> BTreeMap<String, SeriesData> {
+    let mut series_data = BTreeMap::new();
+    for (name, metrics) in series_metrics {
+        let Some(spec) = series.get(&name) else {
+            continue;
+        };
+        let mut m = BTreeMap::new();
+        for metric in metrics {
+            if let Ok((_, values, _)) = check::series_values(&name, &metric, ctx) {
+                m.insert(metric, values);
+            }
+        }
+        series_data.insert(
+            name,
+            SeriesData {
+                refine: spec.refine,
+                levels: spec.levels.clone(),
+                metrics: m,
+            },
+        );
+    }
+    series_data
+}
+
+type RunReports = (
+    BTreeMap<String, BTreeMap<String, String>>,
+    BTreeMap<String, BTreeMap<String, f64>>,
+    BTreeMap<String, String>,
+);
+
+/// Per run: its modelling lines (when it has any), its metrics, or its error.
+fn run_reports(results: &BTreeMap<String, JobResult>) -> RunReports {
+    let mut modelling = BTreeMap::new();
+    let mut metrics = BTreeMap::new();
+    let mut job_errors = BTreeMap::new();
+    for (name, r) in results {
+        match r {
+            Ok(d) => {
+                if !d.info.is_empty() {
+                    modelling.insert(name.clone(), d.info.clone());
+                }
+                metrics.insert(name.clone(), d.metrics.clone());
+            }
+            Err(e) => {
+                job_errors.insert(name.clone(), e.clone());
+            }
+        }
+    }
+    (modelling, metrics, job_errors)
 }
 
 /// Compact number for the matrix.
