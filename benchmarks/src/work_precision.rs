@@ -13,7 +13,7 @@ use impact_solver::scene::{DtChoice, ElementKind};
 use impact_solver::{simulate, History, Outcome, Quiet, Scene};
 use plotters::prelude::*;
 
-use impact_verification::builtins::PlaneWave;
+use impact_analytical::plane_wave::PlaneWave;
 
 use crate::common::{markdown_table, paper, pulse, timed, write_csv};
 

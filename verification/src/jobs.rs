@@ -401,13 +401,11 @@ fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {
             })
         }
         (None, Some(name)) => {
-            let known = crate::builtins::NAMES
-                .iter()
-                .chain(&crate::code_verification::NAMES);
+            let known = crate::builtins::names();
             if !known.clone().any(|n| n == name) {
                 return Err(format!(
                     "{loc}: unknown builtin {name:?} (known: {})",
-                    known.copied().collect::<Vec<_>>().join(", ")
+                    known.collect::<Vec<_>>().join(", ")
                 ));
             }
             Ok(Job::Builtin {

@@ -1,0 +1,33 @@
+//! Closed-form reference solutions of the impact solver's problems, one file each with its
+//! source and a checked constructor. They are written independently of the solver's code: the
+//! verification harness (its builtins) and the benchmarks compare the solver against them.
+//! The one dependency on the solver is for the plane-wave problem's scene and history.
+//!
+//! - [`plane_wave`]: plane-strain P and S wave speeds, and the plane-wave problem that
+//!   measures them (harness builtin `plane-wave`, work-precision benchmark `wave-p`).
+//! - [`beam`]: static clamped-clamped beam under a central load (Euler-Bernoulli, shear).
+//! - [`modal_beam`]: the same beam under a rectangular pulse, by modal superposition.
+//! - [`hertz_line`]: the paper's line-contact law, eq. (4), in any consistent units.
+
+pub mod beam;
+pub mod hertz_line;
+pub mod modal_beam;
+pub mod plane_wave;
+
+/// `Ok(x)` when `x` is finite and > 0, else the message naming `what`.
+pub(crate) fn positive(what: &str, x: f64) -> Result<f64, String> {
+    if x.is_finite() && x > 0.0 {
+        Ok(x)
+    } else {
+        Err(format!("{what} = {x}: must be a finite number > 0"))
+    }
+}
+
+/// `Ok(nu)` for a Poisson ratio in (-1, 0.5).
+pub(crate) fn poisson(nu: f64) -> Result<f64, String> {
+    if nu > -1.0 && nu < 0.5 {
+        Ok(nu)
+    } else {
+        Err(format!("poisson_ratio = {nu}: must be in (-1, 0.5)"))
+    }
+}
