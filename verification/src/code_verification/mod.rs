@@ -7,6 +7,7 @@ pub mod driver;
 pub mod macneal_harder;
 pub mod manufactured;
 pub mod orders;
+pub mod plastic_path;
 pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
@@ -18,12 +19,13 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 5] = [
+pub const NAMES: [&str; 6] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
     "macneal-harder-patch",
     "rigid-target",
+    "plastic-strain-path",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -34,6 +36,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "impactor-spring" => spring::spring(p),
         "macneal-harder-patch" => macneal_harder::patch(p),
         "rigid-target" => rigid_target::rigid_target(p),
+        "plastic-strain-path" => plastic_path::plastic_strain_path(p),
         _ => return None,
     })
 }
