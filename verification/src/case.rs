@@ -41,6 +41,9 @@ pub enum Category {
     Literature,
     #[serde(rename = "regression")]
     Regression,
+    /// A case whose case.yaml does not load (`crate::broken`); no case file may declare it.
+    #[serde(rename = "unknown (case.yaml does not load)", skip_deserializing)]
+    Unknown,
 }
 
 impl Category {
@@ -51,6 +54,7 @@ impl Category {
             Category::CodeToCode => "code-to-code",
             Category::Literature => "literature",
             Category::Regression => "regression",
+            Category::Unknown => "unknown (case.yaml does not load)",
         }
     }
 }

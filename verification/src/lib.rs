@@ -4,6 +4,7 @@
 
 pub mod baseline;
 pub mod bench_report;
+pub mod broken;
 pub mod builtins;
 pub mod case;
 pub mod case_progress;

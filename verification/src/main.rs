@@ -331,6 +331,14 @@ fn verify(
             return ExitCode::from(2);
         }
     };
+    for c in &outcome.matrix.cases {
+        if let Some(e) = c.job_errors.get("(case.yaml)") {
+            eprintln!(
+                "error: {}/{} is broken (a FAIL row; the other cases ran): {e}",
+                c.suite, c.case
+            );
+        }
+    }
     print!("{}", runner::matrix_text(&outcome.matrix));
     print!("{}", runner::summary_text(&outcome.matrix));
     let wall = started.elapsed().as_secs_f64();

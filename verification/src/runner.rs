@@ -10,6 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
 
+use crate::broken::Broken;
 use crate::case::{Case, Category};
 use crate::check::{self, CheckResult, Context, Status};
 use crate::jobs::{self, Job, JobResult};
@@ -134,6 +135,19 @@ fn selected(case: &Case, opts: &Options) -> bool {
         .any(|s| s == &case.suite || s == case.id() || s == &case.name || *s == full)
 }
 
+/// A broken case is selected as a case would be (its suite, name or id; heavy when it says so).
+fn broken_selected(b: &Broken, opts: &Options) -> bool {
+    if let Some(case) = &b.parsed {
+        return selected(case, opts);
+    }
+    let full = format!("{}/{}", b.suite, b.case);
+    opts.selectors.is_empty()
+        || opts
+            .selectors
+            .iter()
+            .any(|s| s == &b.suite || s == &b.case || *s == full)
+}
+
 fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
     match filter {
         None => true,
@@ -143,8 +157,8 @@ fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
 
 /// Runs the selected cases. Errors: cases that do not load or do not lint.
 pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
-    let cases = load(repo)?;
-    let plan = plan(&cases, opts)?;
+    let loaded = load(repo)?;
+    let plan = plan(&loaded, opts)?;
     let all: Vec<usize> = (0..plan.jobs.len()).collect();
     let finished = execute(&plan, &all, opts.jobs, opts.progress).map_err(|e| vec![e])?;
     let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
@@ -154,33 +168,44 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
     Ok(assemble(repo, &plan, slots, &opts.filter))
 }
 
-/// The repository's cases, when they all load and lint clean.
-pub fn load(repo: &Repo) -> Result<Vec<Case>, Vec<String>> {
+/// The repository's cases: those that load and lint clean, and the broken ones (each will be
+/// a FAIL row). Errors: lint findings that are no single case's.
+pub fn load(repo: &Repo) -> Result<Loaded, Vec<String>> {
     let (cases, errors) = crate::case::load_cases(&repo.cases_dir());
-    let mut problems: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
-    problems.extend(
-        crate::lint::lint(repo, &cases)
-            .into_iter()
-            .map(|f| f.to_string()),
-    );
-    if !problems.is_empty() {
-        return Err(problems);
+    let findings = crate::lint::lint(repo, &cases);
+    let (cases, broken, fatal) = crate::broken::split(cases, errors, findings);
+    if !fatal.is_empty() {
+        return Err(fatal);
     }
-    Ok(cases)
+    Ok(Loaded { cases, broken })
+}
+
+/// What [`load`] found.
+pub struct Loaded {
+    pub cases: Vec<Case>,
+    pub broken: Vec<Broken>,
 }
 
 /// The selected cases and their jobs, deduplicated by content (what a run or a shard of it
 /// executes; `crate::shard` shares `jobs` out by cost).
 pub struct Plan<'a> {
     pub cases: Vec<&'a Case>,
+    /// The selected broken cases (no jobs; a FAIL row each).
+    pub broken: Vec<&'a Broken>,
     pub jobs: Vec<Job>,
     /// Per case: scene name -> index into `jobs` (or why its jobs could not be made).
     case_jobs: Vec<BTreeMap<String, Result<usize, String>>>,
 }
 
 /// Selects the cases of `opts` and makes their jobs. Errors: no case matches.
-pub fn plan<'a>(cases: &'a [Case], opts: &Options) -> Result<Plan<'a>, Vec<String>> {
-    let chosen: Vec<&Case> = cases
+pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<String>> {
+    let broken: Vec<&Broken> = loaded
+        .broken
+        .iter()
+        .filter(|b| broken_selected(b, opts))
+        .collect();
+    let chosen: Vec<&Case> = loaded
+        .cases
         .iter()
         .filter(|c| selected(c, opts))
         .filter(|c| {
@@ -190,7 +215,7 @@ pub fn plan<'a>(cases: &'a [Case], opts: &Options) -> Result<Plan<'a>, Vec<Strin
                 .any(|k| check_matches(c, &k.value.id, &opts.filter))
         })
         .collect();
-    if chosen.is_empty() {
+    if chosen.is_empty() && broken.is_empty() {
         return Err(vec![format!(
             "no case matches {:?}{}",
             opts.selectors,
@@ -233,6 +258,7 @@ pub fn plan<'a>(cases: &'a [Case], opts: &Options) -> Result<Plan<'a>, Vec<Strin
     }
     Ok(Plan {
         cases: chosen,
+        broken,
         jobs: unique,
         case_jobs,
     })
@@ -281,7 +307,8 @@ pub fn execute(
         order
             .par_iter()
             .map(|&i| {
-                let r = jobs[i].run();
+                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| jobs[i].run()))
+                    .unwrap_or_else(|p| Err(format!("the run panicked: {}", panic_text(&*p))));
                 case_progress.run_done(i, bar.as_ref());
                 if let Some(b) = &bar {
                     b.inc(1);
@@ -294,6 +321,15 @@ pub fn execute(
         b.finish_and_clear();
     }
     Ok(finished)
+}
+
+/// The text of a panic's payload (a `&str` or `String`; otherwise "no message").
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "no message".into())
 }
 
 /// The matrix from the plan's job results (`slots[i]`: the result of `plan.jobs[i]`; None:
@@ -328,8 +364,72 @@ pub fn assemble(
             .push(case_result(repo, case, &results, setup_error, filter));
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
+    matrix
+        .cases
+        .extend(plan.broken.iter().map(|b| broken_row(b)));
+    matrix
+        .cases
+        .sort_by(|a, b| (&a.suite, &a.case).cmp(&(&b.suite, &b.case)));
     matrix.counts = Counts::from_tally(&matrix.tally());
     Outcome { matrix, data }
+}
+
+/// A broken case's row: one FAIL check `case-loads` carrying why (file:line:col).
+fn broken_row(b: &Broken) -> CaseResult {
+    let message = b.messages.join("; ");
+    let check = CheckResult {
+        id: "case-loads".into(),
+        title: "the case loads and lints clean".into(),
+        status: Status::Fail,
+        computed: None,
+        reference: None,
+        error: None,
+        error_kind: "absolute",
+        compare: crate::case::Compare::Within,
+        tolerance: "-".into(),
+        tolerance_reason: "a case that does not load cannot be checked".into(),
+        reference_kind: "invariant".into(),
+        reference_source: "impact lint".into(),
+        message: message.clone(),
+        known_failure: None,
+    };
+    let (id, title, requirement_id, requirement, category, heavy) = match &b.parsed {
+        Some(c) => (
+            c.id().to_string(),
+            c.file.title.clone(),
+            c.file.requirement.id.value.clone(),
+            c.file.requirement.text.value.clone(),
+            c.file.category,
+            c.file.heavy,
+        ),
+        None => (
+            format!("{}/{}", b.suite, b.case),
+            "(case.yaml does not load)".into(),
+            "-".into(),
+            "-".into(),
+            Category::Unknown,
+            false,
+        ),
+    };
+    CaseResult {
+        suite: b.suite.clone(),
+        case: b.case.clone(),
+        id,
+        title,
+        requirement_id,
+        requirement,
+        category,
+        heavy,
+        problem: String::new(),
+        modelling: BTreeMap::new(),
+        metrics: BTreeMap::new(),
+        job_errors: BTreeMap::from([("(case.yaml)".to_string(), message)]),
+        series: BTreeMap::new(),
+        plots: Vec::new(),
+        checks: vec![check],
+        wrong_models: BTreeMap::new(),
+        discrimination: Vec::new(),
+    }
 }
 
 /// One case's row of the matrix: its checks evaluated on its runs' `results` (all FAIL with

@@ -171,8 +171,8 @@ pub fn run_shard(
     shard: Shard,
     out: &Path,
 ) -> Result<(usize, usize), Vec<String>> {
-    let cases = runner::load(repo)?;
-    let plan = runner::plan(&cases, opts)?;
+    let loaded = runner::load(repo)?;
+    let plan = runner::plan(&loaded, opts)?;
     let costs: Vec<f64> = plan.jobs.iter().map(|j| j.cost()).collect();
     let mine = share(&costs, shard);
     let results = runner::execute(&plan, &mine, opts.jobs, opts.progress).map_err(|e| vec![e])?;
@@ -291,8 +291,8 @@ pub fn merge(repo: &Repo, dirs: &[PathBuf], jobs: usize) -> Result<Outcome, Vec<
             by_key.insert(job.key, result);
         }
     }
-    let cases = runner::load(repo)?;
-    let plan = runner::plan(&cases, &opts)?;
+    let loaded = runner::load(repo)?;
+    let plan = runner::plan(&loaded, &opts)?;
     let covered =
         by_key.len() == plan.jobs.len() && plan.jobs.iter().all(|j| by_key.contains_key(&j.key()));
     if !covered {

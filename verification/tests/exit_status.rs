@@ -2,7 +2,8 @@
 //! repositories whose one case uses the cheap `hertz-law` builtin:
 //! - 0 when every failing check is a declared known failure and none passes unexpectedly;
 //! - 1 on an undeclared failure, and on a known failure that passes (XPASS);
-//! - 2 on a case that does not parse and on bad usage.
+//! - a case that does not parse is a FAIL row of that case (exit 1) and the other suites still
+//!   run (issue 13); 2 on bad usage.
 //!
 //! The matrix's total line counts the known failures apart from the unexpected ones.
 
@@ -54,16 +55,21 @@ fn scratch(checks: &str) -> PathBuf {
 /// (exit code, stdout, stderr) of `impact verify` on a scratch repository.
 fn verify(checks: &str, extra: &[&str]) -> (i32, String, String) {
     let root = scratch(checks);
-    let out = root.join("out");
+    let result = verify_in(&root, extra);
+    let _ = std::fs::remove_dir_all(&root);
+    result
+}
+
+/// (exit code, stdout, stderr) of `impact verify --root ROOT --out ROOT/out`.
+fn verify_in(root: &std::path::Path, extra: &[&str]) -> (i32, String, String) {
     let o = Command::new(env!("CARGO_BIN_EXE_impact"))
         .args(["verify", "--jobs", "1", "--root"])
-        .arg(&root)
+        .arg(root)
         .arg("--out")
-        .arg(&out)
+        .arg(root.join("out"))
         .args(extra)
         .output()
         .expect("run impact");
-    let _ = std::fs::remove_dir_all(&root);
     (
         o.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&o.stdout).into_owned(),
@@ -110,10 +116,28 @@ fn a_known_failure_that_passes_exits_1() {
 }
 
 #[test]
-fn bad_input_and_bad_usage_exit_2() {
-    let (code, _, stderr) = verify("\n  - id: [not, a, string]\n", &[]);
-    assert_eq!(code, 2, "{stderr}");
-    assert!(stderr.contains("case.yaml:"), "names the file: {stderr}");
+fn a_broken_case_is_a_fail_row_and_the_other_suites_run() {
+    let root = scratch(PASSES);
+    let broken = root.join("verification/cases/another/broken");
+    std::fs::create_dir_all(&broken).unwrap();
+    std::fs::write(broken.join("case.yaml"), "id: [not, a, string]\n").unwrap();
+    let (code, stdout, stderr) = verify_in(&root, &[]);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(
+        stderr.contains("another/broken is broken") && stderr.contains("case.yaml:1:"),
+        "names the case and the file: {stderr}"
+    );
+    assert!(
+        stdout.contains("1 OK, 0 known FAIL, 1 unexpected FAIL"),
+        "the good case ran: {stdout}"
+    );
+    let results = std::fs::read_to_string(root.join("out/results.json")).unwrap();
+    assert!(results.contains("\"case-loads\""), "{results}");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
+fn bad_usage_exits_2() {
     let (code, _, stderr) = verify(PASSES, &["--no-such-flag"]);
     assert_eq!(code, 2, "{stderr}");
 }
