@@ -13,7 +13,9 @@ cd "$root"
 TOL="${CI_COMPARE_TOL:-1e-8}"
 
 echo "== ci-compare: build the release binary"
-cargo build --release --quiet -p impact-verification
+# --workspace, not -p impact-verification: the same dependency features as `cargo test
+# --workspace --release` (.ci/run), so CI reuses that build instead of making a second one.
+cargo build --release --quiet --workspace --bins
 impact="$root/target/release/impact"
 
 scripts/setup-venv.sh

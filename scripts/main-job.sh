@@ -8,9 +8,9 @@
 # out/verification/benchmarks/ (the impact-bench CSV, SVG and Markdown). Runs from any folder.
 # Exit status: verify's (0 when every failing check is a declared known failure and none
 # passes unexpectedly, 1 on an unexpected FAIL or an XPASS, 2 bad input), written after the
-# report; when verify passes but the benchmarks failed (a stability run that blew up silently,
-# a build error), the benchmarks' status, so a failure is never hidden. The report is written
-# in both cases, with whatever the benchmarks managed to write.
+# report; when verify passes but the benchmarks failed (a stability run that blew up
+# silently), the benchmarks' status, so a failure is never hidden. The report is written in
+# both cases, with whatever the benchmarks managed to write. A build error stops at once.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -29,17 +29,23 @@ bench="$out/benchmarks"
 rm -rf "$bench"   # no stale results from an earlier run in the report
 mkdir -p "$bench"
 
+# One optimised build of the binaries (the release profile, as `.ci/run`'s tests use), then
+# run them from target/release. --workspace, not -p: a package selection can resolve the
+# dependencies' features apart from `cargo test --workspace --release` and rebuild them.
+echo "== build: impact-bench and impact (release)"
+cargo build --release --workspace --bins
+target_dir="$(cargo metadata --format-version 1 --no-deps | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')"
+
 echo "== benchmarks: impact-bench all ${quick[*]:-} --out $bench"
 bench_status=0
-cargo run --release -p impact-benchmarks -- all "${quick[@]}" --out "$bench" || bench_status=$?
+"$target_dir/release/impact-bench" all "${quick[@]}" --out "$bench" || bench_status=$?
 if [[ $bench_status -ne 0 ]]; then
     echo "main-job: the benchmarks failed (status $bench_status); the report shows what they wrote" >&2
 fi
 
 echo "== verify: the matrix and the V&V report"
 verify_status=0
-cargo run --release -p impact-verification --bin impact -- \
-    verify --report --out "$out" --benchmarks "$bench" || verify_status=$?
+"$target_dir/release/impact" verify --report --out "$out" --benchmarks "$bench" || verify_status=$?
 
 echo "== report: $out/index.html, $out/report.md"
 if [[ $verify_status -ne 0 ]]; then

@@ -4,6 +4,7 @@
 
 use crate::assembly::Assembly;
 use crate::contact::{solve_contact_force, LineContactLaw};
+use crate::elastic_screen::ElasticScreen;
 use crate::element::{
     element_max_eigenvalue, element_response, gather, lumped_masses, ElementEnergy, Formulation,
 };
@@ -48,6 +49,9 @@ pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     /// Precomputed element stiffness, used instead of the stress path when the material is
     /// linear elastic (see [`PlateModel::with_linear_kernel`]).
     pub linear: Option<LinearKernel>,
+    /// For a plastic material: elements that never yielded and stay elastic by `K_e u_e`
+    /// (see [`PlateModel::with_elastic_screen`]).
+    pub screen: Option<ElasticScreen>,
     /// Chunked (optionally multithreaded) assembly buffers.
     pub assembly: Assembly,
 }
@@ -72,6 +76,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             mass,
             inverse_mass,
             linear: None,
+            screen: None,
             // Elastic materials have a zero-sized state and a cheap kernel.
             assembly: Assembly::for_mesh(n, std::mem::size_of::<M::State>() > 0),
         }
@@ -84,6 +89,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             material,
             states,
             linear,
+            screen,
             assembly,
             ..
         } = self;
@@ -102,13 +108,11 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 F::POINTS,
                 nodes,
                 |e, states| {
-                    element_response(
-                        formulation,
-                        material,
-                        e,
-                        &gather(formulation.nodes(e), u),
-                        states,
-                    )
+                    let ue = gather(formulation.nodes(e), u);
+                    screen
+                        .as_ref()
+                        .and_then(|s| s.element(formulation, material, e, &ue, states))
+                        .unwrap_or_else(|| element_response(formulation, material, e, &ue, states))
                 },
                 f,
             ),
@@ -119,6 +123,13 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     /// for a linear elastic material (the caller's guarantee: `M = Elastic`).
     pub fn with_linear_kernel(mut self, mesh: &Mesh, elastic: &Elastic) -> Self {
         self.linear = Some(LinearKernel::new(&self.formulation, elastic, mesh));
+        self
+    }
+
+    /// Lets elements that never yielded respond by `K_e u_e` while they certainly stay
+    /// elastic (no effect for a material that never yields).
+    pub fn with_elastic_screen(mut self, mesh: &Mesh) -> Self {
+        self.screen = ElasticScreen::new(&self.formulation, &self.material, mesh);
         self
     }
 

@@ -11,6 +11,7 @@ pub mod assembly;
 pub mod budget;
 pub mod contact;
 pub mod contact_failure;
+pub mod elastic_screen;
 pub mod element;
 pub mod energy;
 pub mod error;

@@ -30,6 +30,16 @@ pub trait ConstitutiveModel: Sync {
     /// Equivalent plastic strain of a state.
     fn equivalent_plastic_strain(&self, state: &Self::State) -> f64;
     fn elastic(&self) -> &Elastic;
+    /// The flow stress of a point that has never yielded (Pa), `None` for a material that
+    /// never yields: below it in von Mises stress a virgin point is linear elastic.
+    fn virgin_yield_stress(&self) -> Option<f64> {
+        None
+    }
+    /// Whether a point in `state` has never yielded (its response is still `D eps`).
+    #[inline(always)]
+    fn is_virgin(&self, _state: &Self::State) -> bool {
+        true
+    }
 }
 
 /// Isotropic linear elasticity (Lame constants in Pa).
@@ -257,6 +267,17 @@ impl ConstitutiveModel for VonMises {
 
     fn elastic(&self) -> &Elastic {
         &self.elastic
+    }
+
+    fn virgin_yield_stress(&self) -> Option<f64> {
+        Some(self.flow.flow_stress(0.0))
+    }
+
+    /// The plastic strain only moves with the equivalent plastic strain (`dk > 0`), so a
+    /// point with `eqps == 0` still has zero plastic strain.
+    #[inline(always)]
+    fn is_virgin(&self, state: &PlasticState) -> bool {
+        state.eqps == 0.0
     }
 }
 

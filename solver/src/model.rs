@@ -65,7 +65,9 @@ pub enum Kernel {
     ElasticStiffnessMatrix,
     /// Elastic, always through the stresses (strain -> stress -> `B^T s`).
     ElasticStressPath,
-    /// Von Mises plasticity (the material must have `plasticity`).
+    /// Von Mises plasticity (the material must have `plasticity`), with the elastic screen
+    /// where the stiffness matrix pays (elements that never yielded and stay elastic take
+    /// `K_e u_e`: [`crate::elastic_screen`]).
     Plastic,
 }
 
@@ -111,7 +113,13 @@ fn with_material<F: Formulation, U: UseModel>(
         _ => None,
     };
     if let Some(plastic) = plastic {
-        return Ok(user.use_model(PlateModel::new(formulation, plastic, mesh, m.density)));
+        let model = PlateModel::new(formulation, plastic, mesh, m.density);
+        // Elastic points at elastic cost where the stiffness product is the cheaper path.
+        return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
+            model.with_elastic_screen(&mesh.mesh)
+        } else {
+            model
+        }));
     }
     if kernel == Kernel::Plastic {
         return Err(Error::invalid(

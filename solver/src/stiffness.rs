@@ -51,12 +51,23 @@ impl LinearKernel {
         e: usize,
         u: &[f64],
     ) -> (ElementVector, ElementEnergy) {
-        let ue = gather(formulation.nodes(e), u);
+        self.element_of(formulation, e, &gather(formulation.nodes(e), u))
+    }
+
+    /// Internal forces `K_e ue` of element `e` for its displacement vector `ue` (m), with its
+    /// strain and hourglass energies (J).
+    #[inline(always)]
+    pub fn element_of<F: Formulation>(
+        &self,
+        formulation: &F,
+        e: usize,
+        ue: &ElementVector,
+    ) -> (ElementVector, ElementEnergy) {
         // Column by column: each lane of `fe` is an independent sum, which the compiler can
         // vectorise without reordering any addition (so the result is the same bits).
         let columns = &self.columns[self.matrix_of[e] as usize];
         let mut fe = [0.0; 8];
-        for (column, &uj) in columns.iter().zip(&ue) {
+        for (column, &uj) in columns.iter().zip(ue) {
             for i in 0..8 {
                 fe[i] += column[i] * uj;
             }
@@ -65,7 +76,7 @@ impl LinearKernel {
         for i in 0..8 {
             work += fe[i] * ue[i];
         }
-        let hourglass = formulation.hourglass_energy(e, &ue);
+        let hourglass = formulation.hourglass_energy(e, ue);
         let energy = ElementEnergy {
             strain: 0.5 * work - hourglass,
             plastic_work: 0.0,

@@ -1,0 +1,194 @@
+//! Elastic points at elastic cost in a plastic scene. An element none of whose points has
+//! yielded responds with `K_e u_e` (eq. 13) as long as every point stays below the initial
+//! yield stress; the screen proves that from the element's elastic strain energy, which the
+//! stiffness product gives for 8 more flops, and otherwise leaves the element to the plastic
+//! stress path (eqs. 14, 16).
+//!
+//! The bound: for the linear-elastic response the element strain energy is
+//! `W = sum_p w_p (K tr_p^2 / 2 + q_p^2 / (6 mu))` (bulk modulus `K`, von Mises stress `q_p`,
+//! weights `w_p`; every term >= 0; B-bar and one-point elements alike, hourglass energy
+//! apart), so `q_p^2 <= 6 mu W / w_p` at every point. When `W < SAFETY w_min sigma_y^2 /
+//! (6 mu)`, every `q_p^2 < sigma_y^2`: the radial return would take its elastic branch at
+//! every point and leave the state unchanged, and `K_e u_e` is its force up to round-off.
+
+use crate::element::{ElementEnergy, ElementVector, Formulation};
+use crate::material::ConstitutiveModel;
+use crate::mesh::Mesh;
+use crate::stiffness::LinearKernel;
+
+/// Fraction of the bound an element may reach on the fast path. `W` from the stiffness
+/// product (with node 0's translation removed, so no rigid motion cancels) is exact to
+/// ~1e-13 relative (64 products of one sign-definite quadratic form); a margin of 1e-3 is
+/// 10^10 times that and costs nothing measurable (elements that close to yield are few).
+const SAFETY: f64 = 0.999;
+
+/// Stiffness matrices and, per element, the strain energy below which it is certainly elastic.
+pub struct ElasticScreen {
+    kernel: LinearKernel,
+    /// Per element: `SAFETY w_min sigma_y^2 / (6 mu)`, J.
+    limit: Vec<f64>,
+}
+
+impl ElasticScreen {
+    /// The screen of `formulation` for `material`, `None` when the material never yields.
+    pub fn new<F: Formulation, M: ConstitutiveModel>(
+        formulation: &F,
+        material: &M,
+        mesh: &Mesh,
+    ) -> Option<ElasticScreen> {
+        let yield_stress = material.virgin_yield_stress()?;
+        let elastic = material.elastic();
+        let per_weight = SAFETY * yield_stress * yield_stress / (6.0 * elastic.mu);
+        let limit = (0..formulation.n_elements())
+            .map(|e| {
+                let w = formulation.weights(e);
+                per_weight * w[..F::POINTS].iter().copied().fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        Some(ElasticScreen {
+            kernel: LinearKernel::new(formulation, elastic, mesh),
+            limit,
+        })
+    }
+
+    /// Forces and energies of element `e` at its displacements `ue` (m) by `K_e u_e` when
+    /// every point of it (`states`) is virgin and certainly stays elastic; `None` otherwise
+    /// (the caller runs the plastic stress path).
+    #[inline(always)]
+    pub fn element<F: Formulation, M: ConstitutiveModel>(
+        &self,
+        formulation: &F,
+        material: &M,
+        e: usize,
+        ue: &ElementVector,
+        states: &[M::State],
+    ) -> Option<(ElementVector, ElementEnergy)> {
+        if !states.iter().all(|s| material.is_virgin(s)) {
+            return None;
+        }
+        // K_e kills translations: remove node 0's so the energy suffers no cancellation.
+        let (tx, ty) = (ue[0], ue[1]);
+        let relative: ElementVector =
+            std::array::from_fn(|i| ue[i] - if i % 2 == 0 { tx } else { ty });
+        let (f, energy) = self.kernel.element_of(formulation, e, &relative);
+        (energy.strain < self.limit[e]).then_some((f, energy))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Reference: the plastic stress path (`element_response` with von Mises). Below the
+    //! screen's bound both give the same forces to round-off and leave the states virgin;
+    //! near yield the screen must refuse every element the stress path lets yield.
+    use super::*;
+    use crate::element::{element_response, gather, FullQ4, OnePointQ4, SelectiveQ4};
+    use crate::material::{Elastic, VonMises};
+    use crate::mesh::PlateMesh;
+    use crate::scene::{ElementKind, Hardening, Material, MeshSettings, Model, Plasticity, Plate};
+
+    fn check<F: Formulation>(make: impl Fn(&Mesh) -> F) {
+        let plate = Plate {
+            length: 0.2,
+            width: 0.2,
+            thickness: 0.02,
+            ends: crate::scene::Ends::Clamped,
+        };
+        let settings = MeshSettings {
+            nx: 12,
+            ny: 4,
+            element: ElementKind::Q4Sri,
+            model: Model::Half,
+            grading: 3.0,
+            hourglass: 0.05,
+            distortion: 0.0,
+        };
+        let mesh = PlateMesh::new(&plate, &settings);
+        let material = VonMises::new(&Material {
+            density: 7850.0,
+            youngs_modulus: 207e9,
+            poisson_ratio: 0.3,
+            plasticity: Some(Plasticity {
+                yield_stress: 176e6,
+                hardening: Hardening::Linear {
+                    tangent_modulus: 1e9,
+                },
+            }),
+        })
+        .unwrap();
+        let formulation = make(&mesh.mesh);
+        let screen = ElasticScreen::new(&formulation, &material, &mesh.mesh).unwrap();
+        let (mut fast, mut refused_yielding) = (0, 0);
+        // Non-smooth fields with a large rigid translation, from far below yield to far above.
+        for amplitude in [1e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4] {
+            let u: Vec<f64> = (0..2 * mesh.mesh.n_nodes())
+                .map(|i| 1e-3 + amplitude * ((i as f64 * 0.7).sin() + 0.3 * (i as f64 * 2.3).cos()))
+                .collect();
+            for e in 0..formulation.n_elements() {
+                let ue = gather(formulation.nodes(e), &u);
+                let mut states = [Default::default(); 4];
+                let (f_ref, en_ref) =
+                    element_response(&formulation, &material, e, &ue, &mut states[..F::POINTS]);
+                let yielded = !states.iter().all(|s| material.is_virgin(s));
+                match screen.element(&formulation, &material, e, &ue, &states[..F::POINTS]) {
+                    Some((f, en)) => {
+                        assert!(!yielded, "element {e} at {amplitude}: screened but yields");
+                        let scale = f_ref.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                        for (a, b) in f.iter().zip(&f_ref) {
+                            assert!((a - b).abs() <= 1e-9 * scale, "{a:e} vs {b:e}");
+                        }
+                        assert!((en.strain - en_ref.strain).abs() <= 1e-9 * en_ref.strain);
+                        fast += 1;
+                    }
+                    None if yielded => refused_yielding += 1,
+                    // Far below yield the screen must pay: every element takes it.
+                    None => assert!(amplitude > 1e-7, "element {e} refused far below yield"),
+                }
+            }
+        }
+        // The sweep crosses yield: some elements take each branch.
+        assert!(
+            fast > 0 && refused_yielding > 0,
+            "{fast} {refused_yielding}"
+        );
+        // A yielded element is never screened, even when it is elastic again.
+        let mut states = [Default::default(); 4];
+        states[0] = crate::material::PlasticState {
+            eqps: 1e-9,
+            ..Default::default()
+        };
+        assert!(screen
+            .element(&formulation, &material, 0, &[0.0; 8], &states[..F::POINTS])
+            .is_none());
+    }
+
+    #[test]
+    fn screened_elements_equal_the_plastic_stress_path_and_never_yield() {
+        check(|m| FullQ4::new(m, 0.2).unwrap());
+        check(|m| SelectiveQ4::new(m, 0.2).unwrap());
+        check(|m| OnePointQ4::new(m, 0.2, 0.05, Elastic::new(207e9, 0.3).p_modulus()).unwrap());
+    }
+
+    #[test]
+    fn an_elastic_material_has_no_screen() {
+        let plate = Plate {
+            length: 0.2,
+            width: 0.2,
+            thickness: 0.02,
+            ends: crate::scene::Ends::Clamped,
+        };
+        let mesh = PlateMesh::new(
+            &plate,
+            &MeshSettings {
+                nx: 4,
+                ny: 2,
+                element: ElementKind::Q4Sri,
+                model: Model::Half,
+                grading: 1.0,
+                hourglass: 0.05,
+                distortion: 0.0,
+            },
+        );
+        let f = SelectiveQ4::new(&mesh.mesh, 0.2).unwrap();
+        assert!(ElasticScreen::new(&f, &Elastic::new(207e9, 0.3), &mesh.mesh).is_none());
+    }
+}
