@@ -6,6 +6,7 @@
 use std::path::Path;
 
 use impact_solver::scene::{DtChoice, End, Hardening, Load};
+use impact_solver::stable_step::Estimate;
 use impact_solver::{simulate, Error, Quiet, Scene};
 
 use crate::common::{markdown_table, paper, write_csv};
@@ -91,6 +92,27 @@ fn stable_at(base: &Scene, cfl: f64) -> bool {
     matches!(attempt(&s).status, "bounded")
 }
 
+/// Bisection of the critical ratio (CFL fraction of `base`'s estimate) between a stable and
+/// an unstable CFL.
+fn critical_ratio(base: &Scene, quick: bool) -> String {
+    let (mut lo, mut hi) = (0.5, 4.0);
+    if stable_at(base, hi) {
+        return "> 4".into();
+    }
+    if !stable_at(base, lo) {
+        return "< 0.5".into();
+    }
+    for _ in 0..(if quick { 4 } else { 10 }) {
+        let mid = 0.5 * (lo + hi);
+        if stable_at(base, mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    format!("{lo:.3} .. {hi:.3}")
+}
+
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
     let cfls: Vec<f64> = if quick {
         vec![0.3, 0.9, 1.2]
@@ -120,29 +142,16 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                     o.note,
                 ]);
             }
-            // Bisection of the critical ratio between a stable and an unstable CFL.
-            let (mut lo, mut hi) = (0.9, 4.0);
-            if stable_at(&base, hi) {
+            for estimate in [Estimate::Element, Estimate::Global] {
+                let mut b = base.clone();
+                b.time.dt_estimate = estimate;
                 critical.push(vec![
                     mesh.into(),
                     if plastic { "plastic" } else { "elastic" }.into(),
-                    "> 4".into(),
+                    estimate.name().into(),
+                    critical_ratio(&b, quick),
                 ]);
-                continue;
             }
-            for _ in 0..(if quick { 4 } else { 10 }) {
-                let mid = 0.5 * (lo + hi);
-                if stable_at(&base, mid) {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            critical.push(vec![
-                mesh.into(),
-                if plastic { "plastic" } else { "elastic" }.into(),
-                format!("{:.3} .. {:.3}", lo, hi),
-            ]);
         }
     }
     let header = [
@@ -158,7 +167,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
     let mut md = String::from("## CFL sweep (20x4 mesh, impact with contact, 3 ms)\n\n");
     md += &markdown_table(&header, &rows);
     md += &format!("\nRuns below cfl 1.0 not bounded: {violations}\n\n## Measured critical ratio (stable for 5000 steps)\n\n");
-    md += &markdown_table(&["mesh", "material", "critical cfl"], &critical);
+    md += &markdown_table(&["mesh", "material", "estimate", "critical cfl"], &critical);
     let extreme = extreme_inputs(quick);
     let eheader = [
         "case",

@@ -5,9 +5,7 @@
 use crate::assembly::Assembly;
 use crate::contact::{solve_contact_force, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{
-    element_max_eigenvalue, element_response, gather, lumped_masses, ElementEnergy, Formulation,
-};
+use crate::element::{element_response, gather, lumped_masses, ElementEnergy, Formulation};
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::impactor::RigidImpactor;
@@ -16,6 +14,7 @@ use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::{Mesh, PlateMesh};
 use crate::scene::{DtChoice, End, Scene};
+use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this
@@ -135,10 +134,19 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
 
     /// The critical time step 2 / omega_max from the element eigenvalue bound (eq. 15), s.
     pub fn critical_time_step(&self, density: f64) -> f64 {
-        let lambda_max = (0..self.formulation.n_elements())
-            .map(|e| element_max_eigenvalue(&self.formulation, self.material.elastic(), density, e))
-            .fold(0.0, f64::max);
-        2.0 / lambda_max.sqrt()
+        stable_step::element_bound(&self.formulation, self.material.elastic(), density)
+    }
+
+    /// The critical time step from the global estimate of omega_max (power iteration, the
+    /// contact `spring` included, times the safety factor), s.
+    pub fn global_time_step(&self, mesh: &Mesh, spring: Option<Spring>) -> f64 {
+        stable_step::global_estimate(
+            &self.formulation,
+            self.material.elastic(),
+            mesh,
+            &self.inverse_mass,
+            spring,
+        )
     }
 
     /// Stress at integration point `p` of element `e` for displacements `u`.
@@ -331,8 +339,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     model: &mut PlateModel<F, M>,
     observer: &mut dyn Observer,
 ) -> Result<(History, RunTotals)> {
-    let density = scene.material.density;
-    let dt_critical = model.critical_time_step(density);
+    let dt_critical = critical_step(scene, mesh, model);
     let dt = match scene.time.dt {
         DtChoice::Cfl(c) => c * dt_critical,
         DtChoice::Fixed(d) => {
@@ -605,6 +612,31 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         r[width - 1] = balance.ratio(r[width - 1]);
     }
     Ok((history, totals))
+}
+
+/// The stable step of `scene.time.dt.estimate`, s. The global estimate includes the contact
+/// spring on the force node's u_y (for the modelled part: divided by the symmetry factor) at
+/// the stiffest force the impactor's kinetic energy can reach.
+fn critical_step<F: Formulation, M: ConstitutiveModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    model: &PlateModel<F, M>,
+) -> f64 {
+    match scene.time.dt_estimate {
+        Estimate::Element => model.critical_time_step(scene.material.density),
+        Estimate::Global => {
+            let spring = scene.impactor().map(|i| {
+                let law = LineContactLaw::new(i, &scene.material, scene.plate.width);
+                let energy = 0.5 * i.mass * i.velocity * i.velocity;
+                Spring {
+                    dof: 2 * mesh.mid_span_node(i.force_node) + 1,
+                    stiffness: stable_step::contact_stiffness_bound(&law, energy)
+                        / mesh.symmetry_factor,
+                }
+            });
+            model.global_time_step(&mesh.mesh, spring)
+        }
+    }
 }
 
 fn field_frame<F: Formulation, M: ConstitutiveModel>(

@@ -27,6 +27,7 @@ pub mod output;
 pub mod overrides;
 pub mod progress;
 pub mod scene;
+pub mod stable_step;
 pub mod stiffness;
 pub mod summary;
 pub mod yaml_field;

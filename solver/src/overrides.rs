@@ -19,6 +19,10 @@ const ONE_OF: [&str; 5] = [
     "time.end",
 ];
 
+/// Keys beside the variant of a one-of map (`time.dt: {cfl | fixed, estimate}`): kept when
+/// the variant changes, and setting one keeps the variant.
+const BESIDE_THE_VARIANT: [(&str, &str); 1] = [("time.dt", "estimate")];
+
 /// Sets `value` at the dotted `key` of the YAML `tree`, creating the maps on the way
 /// (the scene's parser then refuses keys it does not know).
 pub fn set(tree: &mut Value, key: &str, value: &Value) -> Result<(), String> {
@@ -33,7 +37,10 @@ pub fn set(tree: &mut Value, key: &str, value: &Value) -> Result<(), String> {
             format!("`{path}` holds a value, not a map: cannot set `{key}` inside it")
         })?;
         if one_of && !map.contains_key(part) {
-            map.clear();
+            let beside = |k: &str| BESIDE_THE_VARIANT.contains(&(path.as_str(), k));
+            if !beside(part) {
+                map.retain(|k, _| beside(k));
+            }
         }
         if !path.is_empty() {
             path.push('.');

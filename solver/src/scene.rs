@@ -5,6 +5,7 @@
 //! solver runs. Every field, its unit and its default are documented on [`SceneFile`]'s parts
 //! and in the README.
 
+use crate::stable_step::Estimate;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -277,13 +278,19 @@ pub struct AfterContactFile {
     pub after_contact: f64,
 }
 
+/// `dt: {cfl: c | fixed: s, estimate: element | global}` (exactly one of `cfl`, `fixed`).
 #[derive(Debug, Clone, Deserialize)]
-#[serde(rename_all = "snake_case", deny_unknown_fields)]
-pub enum DtFile {
+#[serde(deny_unknown_fields)]
+pub struct DtFile {
     /// Fraction of the stable estimate.
-    Cfl(f64),
+    #[serde(default)]
+    pub cfl: Option<f64>,
     /// Time step, s.
-    Fixed(f64),
+    #[serde(default)]
+    pub fixed: Option<f64>,
+    /// Which estimate of the stable step (default `element`).
+    #[serde(default)]
+    pub estimate: Estimate,
 }
 
 /// `output: {every: s, probes: {NAME: {x: m, y: m}}, fields: {every: s}}`.
@@ -425,6 +432,8 @@ pub struct Traction {
 pub struct TimeSettings {
     pub end: End,
     pub dt: DtChoice,
+    /// How the stable step is estimated (`time.dt.estimate`).
+    pub dt_estimate: Estimate,
     /// Where `time.dt` is written, for the stable-step error.
     pub dt_location: SourceLocation,
     pub allow_unstable_dt: bool,
@@ -943,8 +952,8 @@ impl Validator<'_> {
             }
         };
         let dt_location = self.at(&t.dt);
-        let dt = match &t.dt.value {
-            DtFile::Cfl(c) => {
+        let dt = match (&t.dt.value.cfl, &t.dt.value.fixed) {
+            (Some(c), None) => {
                 let rule = if t.allow_unstable_dt {
                     CFL_UNCHECKED
                 } else {
@@ -955,16 +964,25 @@ impl Validator<'_> {
                 }
                 DtChoice::Cfl(*c)
             }
-            DtFile::Fixed(d) => {
+            (None, Some(d)) => {
                 if !(POSITIVE.ok)(*d) {
                     return self.fail(&t.dt, "time.dt.fixed", d, POSITIVE.allowed);
                 }
                 DtChoice::Fixed(*d)
             }
+            (c, _) => {
+                return self.fail(
+                    &t.dt,
+                    "time.dt",
+                    if c.is_some() { "both cfl and fixed" } else { "neither cfl nor fixed" },
+                    "takes exactly one of cfl (a fraction of the stable estimate) or fixed (s), and optionally estimate: element | global",
+                )
+            }
         };
         Ok(TimeSettings {
             end,
             dt,
+            dt_estimate: t.dt.value.estimate,
             dt_location,
             allow_unstable_dt: t.allow_unstable_dt,
         })

@@ -65,6 +65,49 @@ fn non_physical_values_name_line_column_field_value_and_range() {
     assert_mentions(&e, &["bad.yaml:20:", "time.end", "-1"]);
     let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: 1.2}"));
     assert_mentions(&e, &["time.dt.cfl", "1.2", "(0, 1]"]);
+    let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: 0.8, fixed: 1.0e-7}"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:21:",
+            "time.dt",
+            "both cfl and fixed",
+            "exactly one",
+        ],
+    );
+    let e = error_for(|s| s.replace("{cfl: 0.8}", "{estimate: global}"));
+    assert_mentions(&e, &["time.dt", "neither cfl nor fixed"]);
+    let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: 0.8, estimate: exact}"));
+    assert_mentions(&e, &["time.dt.estimate", "element", "global"]);
+}
+
+#[test]
+fn the_stable_step_estimate_is_element_unless_asked() {
+    use impact_solver::scene::DtChoice;
+    use impact_solver::stable_step::Estimate;
+    let plain = Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap();
+    assert_eq!(plain.time.dt_estimate, Estimate::Element);
+    let text = EXAMPLE.replace("{cfl: 0.8}", "{cfl: 0.9, estimate: global}");
+    let global = Scene::from_yaml(&text, Path::new("example.yaml")).unwrap();
+    assert_eq!(global.time.dt_estimate, Estimate::Global);
+    assert_eq!(global.time.dt, DtChoice::Cfl(0.9));
+    // An override of the variant keeps the estimate, and the estimate keeps the variant.
+    let o = [("time.dt.fixed".to_string(), serde_json::json!(1e-8))]
+        .into_iter()
+        .collect();
+    let s = Scene::from_yaml_with(&text, &o, Path::new("example.yaml")).unwrap();
+    assert_eq!(
+        (s.time.dt, s.time.dt_estimate),
+        (DtChoice::Fixed(1e-8), Estimate::Global)
+    );
+    let o = [("time.dt.estimate".to_string(), serde_json::json!("element"))]
+        .into_iter()
+        .collect();
+    let s = Scene::from_yaml_with(&text, &o, Path::new("example.yaml")).unwrap();
+    assert_eq!(
+        (s.time.dt, s.time.dt_estimate),
+        (DtChoice::Cfl(0.9), Estimate::Element)
+    );
 }
 
 #[test]
