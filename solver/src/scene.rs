@@ -5,7 +5,6 @@
 //! solver runs. Every field, its unit and its default are documented on [`SceneFile`]'s parts
 //! and in the README.
 
-use crate::stable_step::Estimate;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -445,6 +444,27 @@ pub enum End {
     At(f64),
     /// Stop `after` s after the contact force was last non-zero; never run past `limit` s.
     AfterContact { after: f64, limit: f64 },
+}
+
+/// Which estimate of the largest eigenvalue sets the stable step (`time.dt.estimate`; see
+/// `stable_step`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Estimate {
+    /// The element eigenvalue bound.
+    #[default]
+    Element,
+    /// Power iteration on the assembled operator, the contact spring included.
+    Global,
+}
+
+impl Estimate {
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimate::Element => "element",
+            Estimate::Global => "global",
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]

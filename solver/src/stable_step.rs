@@ -14,25 +14,7 @@ use crate::material::Elastic;
 use crate::mesh::Mesh;
 use crate::stiffness::LinearKernel;
 
-/// Which estimate of the largest eigenvalue sets the stable step (`time.dt.estimate`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Estimate {
-    /// The element eigenvalue bound.
-    #[default]
-    Element,
-    /// Power iteration on the assembled operator, the contact spring included.
-    Global,
-}
-
-impl Estimate {
-    pub fn name(self) -> &'static str {
-        match self {
-            Estimate::Element => "element",
-            Estimate::Global => "global",
-        }
-    }
-}
+pub use crate::scene::Estimate;
 
 /// Power iterations at most (each is one stiffness product over the mesh).
 const MAX_ITERATIONS: usize = 2000;
