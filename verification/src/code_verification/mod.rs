@@ -4,6 +4,7 @@
 //! history ("orders") for the report's order plots.
 
 pub mod driver;
+pub mod element_eigen;
 pub mod macneal_harder;
 pub mod manufactured;
 pub mod orders;
@@ -19,13 +20,14 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 6] = [
+pub const NAMES: [&str; 7] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
     "macneal-harder-patch",
     "rigid-target",
     "plastic-strain-path",
+    "element-eigenvalues",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -37,6 +39,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "macneal-harder-patch" => macneal_harder::patch(p),
         "rigid-target" => rigid_target::rigid_target(p),
         "plastic-strain-path" => plastic_path::plastic_strain_path(p),
+        "element-eigenvalues" => element_eigen::element_eigenvalues(p),
         _ => return None,
     })
 }
