@@ -1,9 +1,11 @@
 """Scene builder, cached parallel runner and residuals for scripts/reconstruction/reconstruct.py.
 
-A parameter set is a plain dict (see DEFAULTS). `scene(p, ...)` turns it into a scene dict
-for `impact simulate`; `Runner.run_many` runs scenes (`jobs` at a time, default 2), caching
-the summary subset of every run in a JSON file keyed by the scene text and the solver
-binary's sha256, so an interrupted search resumes where it stopped.
+A parameter set is a plain dict (see DEFAULTS). `scene(p, ...)` turns it into a scene dict;
+`Runner.run_many` runs scenes (`jobs` at a time, default 2) through the Python package's
+`impact.sweep` (in process, GIL released; `backend="cli"`: `impact simulate` subprocesses),
+caching the summary subset of every run in a JSON file keyed by the scene text and the sha256
+of the solver (the native module, or the binary), so an interrupted search resumes where it
+stopped.
 """
 from __future__ import annotations
 
@@ -158,10 +160,16 @@ def sha256_file(path: Path) -> str:
 
 
 class Runner:
-    """Runs scenes with `impact simulate`, `jobs` at a time, with a JSON cache on disk."""
+    """Runs scenes `jobs` at a time with a JSON cache on disk: through `impact.sweep` (backend
+    "sweep", the package built from python/) or `impact simulate` processes (backend "cli")."""
 
-    def __init__(self, binary: Path, cache_path: Path, jobs: int = 2):
-        self.binary = Path(binary)
+    def __init__(self, binary: Path, cache_path: Path, jobs: int = 2, backend: str = "cli"):
+        self.backend = backend
+        if backend == "sweep":
+            import impact
+            self.binary = Path(impact._impact.__file__)
+        else:
+            self.binary = Path(binary)
         self.bin_sha = sha256_file(self.binary)
         self.cache_path = Path(cache_path)
         self.jobs = jobs
@@ -185,22 +193,48 @@ class Runner:
             os.replace(tmp, self.cache_path)
             self._dirty = 0
 
-    def _run_one(self, text: str, keep: Path | None = None) -> dict:
-        k = self.key(text)
+    def _cached(self, text: str) -> dict | None:
         with self.lock:
-            if k in self.cache and keep is None:
+            res = self.cache.get(self.key(text))
+            if res is not None:
                 self.n_hit += 1
-                return self.cache[k]
+            return res
+
+    def _store(self, text: str, res: dict, wall_s: float) -> None:
+        with self.lock:
+            self.cache[self.key(text)] = res
+            self.n_run += 1
+            self.run_wall_s += wall_s
+            self._dirty += 1
+            dirty = self._dirty
+        if dirty >= 64:
+            self.save()
+
+    def _simulate(self, sc: Path, out: Path) -> str | None:
+        """One run writing the CLI's files into `out`; the error text of a failed run."""
+        if self.backend == "sweep":
+            import impact
+            try:
+                impact.simulate(sc, out=out, threads=1)
+                return None
+            except (impact.SceneError, impact.RunError) as e:
+                return str(e)
+        r = subprocess.run([str(self.binary), "simulate", str(sc), "--out", str(out),
+                            "--quiet"], capture_output=True, text=True)
+        return None if r.returncode == 0 else (r.stderr.strip() or r.stdout.strip())
+
+    def _run_one(self, text: str, keep: Path | None = None) -> dict:
+        if keep is None and (res := self._cached(text)) is not None:
+            return res
         with tempfile.TemporaryDirectory(prefix="recon-") as tmp:
             sc = Path(tmp) / "scene.yaml"
             sc.write_text(text)
             out = Path(tmp) / "out"
             t0 = time.perf_counter()
-            r = subprocess.run([str(self.binary), "simulate", str(sc), "--out", str(out),
-                                "--quiet"], capture_output=True, text=True)
+            error = self._simulate(sc, out)
             dt = time.perf_counter() - t0
-            if r.returncode != 0:
-                res = {"error": (r.stderr.strip() or r.stdout.strip())[-400:]}
+            if error is not None:
+                res = {"error": error[-400:]}
             else:
                 s = json.loads((out / "summary.json").read_text())
                 res = {k2: s[k2] for k2 in KEEP if k2 in s}
@@ -209,23 +243,63 @@ class Runner:
                     for f in ("history.csv", "summary.json"):
                         (keep / f).write_bytes((out / f).read_bytes())
                     (keep / "scene.yaml").write_text(text)
-        with self.lock:
-            self.cache[k] = res
-            self.n_run += 1
-            self.run_wall_s += dt
-            self._dirty += 1
-            dirty = self._dirty
-        if dirty >= 64:
-            self.save()
+        self._store(text, res, dt)
         return res
+
+    def _sweep(self, scenes: list[dict], texts: list[str], which: list[int]) -> dict[int, dict]:
+        """The runs `which` (not cached, nothing kept) through `impact.sweep`: scenes with the
+        same top-level keys form one sweep whose overrides are those keys' whole subtrees
+        (an override replaces the subtree), on `jobs` threads."""
+        import impact
+        groups: dict[tuple, list[int]] = {}
+        for i in which:
+            groups.setdefault(tuple(scenes[i]), []).append(i)
+        done = {}
+        for keys, members in groups.items():
+            t0 = time.perf_counter()
+            frame = impact.sweep(texts[members[0]], [{k: scenes[i][k] for k in keys}
+                                                     for i in members], jobs=self.jobs)
+            dt = (time.perf_counter() - t0) / len(members)
+            for i, row in zip(members, frame.to_dict("records")):
+                error = row.get("error")
+                if isinstance(error, str):
+                    res = {"error": ("error: " + error)[-400:]}
+                else:
+                    # a key this run's summary lacks is NaN in the frame (JSON has no NaN)
+                    res = {k: _plain(k, row[k]) for k in KEEP if k in row
+                           and not (isinstance(row[k], float) and math.isnan(row[k]))}
+                self._store(texts[i], res, dt)
+                done[i] = res
+        return done
 
     def run_many(self, scenes: list[dict], keep: list[Path | None] | None = None) -> list[dict]:
         texts = [dump(s) for s in scenes]
         keep = keep or [None] * len(texts)
+        if self.backend == "sweep":
+            results = {i: self._cached(t) for i, (t, k) in enumerate(zip(texts, keep)) if k is None}
+            todo = [i for i, r in results.items() if r is None]
+            results.update(self._sweep(scenes, texts, todo) if todo else {})
+            for i, k in enumerate(keep):
+                if k is not None:
+                    results[i] = self._run_one(texts[i], k)
+            return [results[i] for i in range(len(texts))]
         if self.jobs <= 1 or len(texts) == 1:
             return [self._run_one(t, k) for t, k in zip(texts, keep)]
         with cf.ThreadPoolExecutor(max_workers=self.jobs) as ex:
             return list(ex.map(self._run_one, texts, keep))
+
+
+INT_KEYS = ("n_steps", "n_elements")
+
+
+def _plain(key: str, value):
+    """A DataFrame cell as summary.json holds it: numpy scalars as Python numbers, and the
+    integer counts that pandas widened to float (a column with a failed run's NaN) as int."""
+    if hasattr(value, "item"):
+        value = value.item()
+    if key in INT_KEYS and isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
 
 
 def read_paper() -> tuple[dict, list[dict]]:

@@ -7,7 +7,8 @@
     scripts/reconstruction/reconstruct.py --report-only   # rewrite the report, tables, plots (and scenes)
                                            #   from reference-data/paper/reconstruction/search.json
 
-It drives `impact simulate` (2 runs at a time, subprocesses) and searches, for each reading of
+It runs its scenes through the Python package's `impact.sweep` (2 at a time on threads, in this
+process; `--runner cli`: `impact simulate` subprocesses, as before) and searches, for each reading of
 the paper - contact law: eq. (4) in metres, eq. (4) in millimetres, Johnson's line contact;
 pairing: force on the indentation datum (default, energy-consistent) or the literal
 force-on-the-top-node reading - the continuous unknowns: the plate's beam-equivalent thickness
@@ -24,7 +25,8 @@ digits, on the default 80 x 16 mesh: Table 1 with point-A candidates, all 14 Tab
 impulse-momentum identity; the chosen set is the best that runs there); mesh study; family
 (h ~ L^2 and off-family contrasts) and a re-fit at another length; the text's yield hint;
 a saturating-hardening variant; the contact-law comparison; the 86.5 kN pulse. Every run is
-cached (out/reconstruct/runs.json, keyed by the solver binary's sha256 and the scene text), so
+cached (out/reconstruct/runs.json, keyed by the solver's sha256 - the native module's or the
+binary's - and the scene text), so
 an interrupted search resumes and a repeated one runs nothing.
 Outputs: reference-data/paper/reconstruction/ (search.json, CSV tables, SVG plots, report.md,
 PROVENANCE.md) and verification/scenes/paper-*.yaml, verification/scenes/paper-table2/.
@@ -219,13 +221,22 @@ class Search:
         self.work = Path(args.work)
         self.work.mkdir(parents=True, exist_ok=True)
         # snapshot the binary so a concurrent rebuild cannot change it mid-search
-        src = Path(args.impact)
-        if not src.exists():
-            sys.exit(f"reconstruct.py: {src} missing: cargo build --release -p impact-verification")
-        self.binary = self.work / "impact"
-        if not self.binary.exists() or rc.sha256_file(self.binary) != rc.sha256_file(src):
-            shutil.copy2(src, self.binary)
-        self.runner = rc.Runner(self.binary, self.work / "runs.json", jobs=args.jobs)
+        if args.runner == "sweep":
+            try:
+                import impact  # noqa: F401
+            except ImportError:
+                sys.exit("reconstruct.py: the Python package impact is missing: "
+                         "pip install ./python (or --runner cli)")
+            self.runner = rc.Runner(None, self.work / "runs.json", jobs=args.jobs, backend="sweep")
+            self.binary = self.runner.binary
+        else:
+            src = Path(args.impact)
+            if not src.exists():
+                sys.exit(f"reconstruct.py: {src} missing: cargo build --release -p impact-verification")
+            self.binary = self.work / "impact"
+            if not self.binary.exists() or rc.sha256_file(self.binary) != rc.sha256_file(src):
+                shutil.copy2(src, self.binary)
+            self.runner = rc.Runner(self.binary, self.work / "runs.json", jobs=args.jobs)
         self.coarse = tuple(args.coarse)
         self.fine = tuple(args.fine)
         self.evals: list[dict] = []
@@ -602,6 +613,8 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="smoke test, < 3 min, writes only to --work")
     ap.add_argument("--jobs", type=int, default=2, help="parallel runs (default 2)")
+    ap.add_argument("--runner", choices=("sweep", "cli"), default="sweep",
+                    help="sweep: impact.sweep (pip install ./python; default); cli: --impact processes")
     ap.add_argument("--impact", default=str(ROOT / "target" / "release" / "impact"))
     ap.add_argument("--work", default=None, help="cache and run folder (default out/reconstruct)")
     ap.add_argument("--out", default=str(ROOT / "reference-data" / "paper" / "reconstruction"))

@@ -3,6 +3,7 @@
 //! hold is refused with the estimate in the message instead of dying in an allocation.
 
 use crate::scene::{DtChoice, ElementKind, End, Model, Scene};
+use crate::{Error, Result};
 
 /// Resident bytes per element: the slope of the peak RSS (`/usr/bin/time -f %M`, one step)
 /// between 400 x 80 and 800 x 160 meshes of the example scenes: q4-sri 740 plastic / 568
@@ -204,6 +205,31 @@ pub fn available_memory() -> Option<f64> {
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024.0)
+}
+
+/// Refuses a scene whose memory estimate exceeds `max_memory` or, without it, the memory
+/// the machine has available (every run checks this before allocating: `crate::simulate`).
+pub fn check(scene: &Scene, estimate: &Estimate, max_memory: Option<f64>) -> Result<()> {
+    let (limit, whose) = match max_memory {
+        Some(m) => (m, "the limit --max-memory"),
+        None => match available_memory() {
+            Some(m) => (m, "the memory available on this machine"),
+            None => return Ok(()),
+        },
+    };
+    if estimate.bytes <= limit {
+        return Ok(());
+    }
+    Err(Error::TooLarge {
+        scene: scene.source.clone(),
+        estimate: format!("this run needs {}", estimate.describe()),
+        limit: format!(
+            "that is more than {whose} ({}); {}, or pass --max-memory {} to run it anyway",
+            bytes(limit),
+            estimate.remedy(),
+            limit_above(estimate.bytes)
+        ),
+    })
 }
 
 #[cfg(test)]

@@ -54,6 +54,18 @@ pub struct Outcome {
 
 /// Runs a validated scene.
 pub fn simulate(scene: &Scene, observer: &mut dyn Observer) -> Result<Outcome> {
+    simulate_within(scene, observer, None)
+}
+
+/// [`simulate`] refusing, before anything is allocated, a scene whose memory estimate
+/// ([`budget::Estimate`]) exceeds `max_memory` bytes or, when None, the memory the machine has
+/// available: every run is protected, the CLI's, the harness's and the Python package's.
+pub fn simulate_within(
+    scene: &Scene,
+    observer: &mut dyn Observer,
+    max_memory: Option<f64>,
+) -> Result<Outcome> {
+    budget::check(scene, &budget::Estimate::of(scene), max_memory)?;
     let started = Instant::now();
     let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
     let run = Run {

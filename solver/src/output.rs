@@ -6,14 +6,14 @@ use std::fs;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use crate::budget::{available_memory, bytes as budget_bytes, limit_above, Estimate, MANY_STEPS};
+use crate::budget::{Estimate, MANY_STEPS};
 use crate::error::{Error, Result};
 use crate::integrator::{FieldFrame, History, Observer};
 use crate::mesh::Mesh;
 use crate::out_dir::{check_out_dir, clean_stale_staging, in_user_terms, staging_dir};
 use crate::progress::{Progress, ProgressMode};
 use crate::scene::Scene;
-use crate::{simulate, Outcome};
+use crate::{simulate_within, Outcome};
 
 pub use crate::out_dir::OUTPUT_FILES;
 
@@ -127,7 +127,7 @@ pub fn simulate_scene_to_dir_with(
 ) -> Result<Outcome> {
     check_out_dir(out_dir, options.force)?;
     let estimate = Estimate::of(scene);
-    check_budget(scene, &estimate, options.max_memory)?;
+    crate::budget::check(scene, &estimate, options.max_memory)?;
     say(format!("simulate: {}", estimate.describe()));
     if estimate.steps > MANY_STEPS {
         say(format!(
@@ -147,11 +147,16 @@ pub fn simulate_scene_to_dir_with(
     }
     let staging = staging_dir(out_dir);
     let what = format!("{} elements", crate::budget::count(estimate.elements));
-    let result =
-        run_into(scene, &staging, Progress::start(options.progress, &what)).and_then(|outcome| {
-            publish(&staging, out_dir)?;
-            Ok(outcome)
-        });
+    let result = run_into(
+        scene,
+        &staging,
+        Progress::start(options.progress, &what),
+        options.max_memory,
+    )
+    .and_then(|outcome| {
+        publish(&staging, out_dir)?;
+        Ok(outcome)
+    });
     let removed = fs::remove_dir_all(&staging).is_ok();
     result.map_err(|e| match in_user_terms(e, &staging, out_dir) {
         Error::Interrupted { step, time_s, .. } => Error::Interrupted {
@@ -168,32 +173,12 @@ pub fn simulate_scene_to_dir_with(
     })
 }
 
-/// Refuses a scene whose memory estimate exceeds `max_memory` or, without it, the memory
-/// the machine has available.
-fn check_budget(scene: &Scene, estimate: &Estimate, max_memory: Option<f64>) -> Result<()> {
-    let (limit, whose) = match max_memory {
-        Some(m) => (m, "the limit --max-memory"),
-        None => match available_memory() {
-            Some(m) => (m, "the memory available on this machine"),
-            None => return Ok(()),
-        },
-    };
-    if estimate.bytes <= limit {
-        return Ok(());
-    }
-    Err(Error::TooLarge {
-        scene: scene.source.clone(),
-        estimate: format!("this run needs {}", estimate.describe()),
-        limit: format!(
-            "that is more than {whose} ({}); {}, or pass --max-memory {} to run it anyway",
-            budget_bytes(limit),
-            estimate.remedy(),
-            limit_above(estimate.bytes)
-        ),
-    })
-}
-
-fn run_into(scene: &Scene, staging: &Path, progress: Progress) -> Result<Outcome> {
+fn run_into(
+    scene: &Scene,
+    staging: &Path,
+    progress: Progress,
+    max_memory: Option<f64>,
+) -> Result<Outcome> {
     let _ = fs::remove_dir_all(staging);
     fs::create_dir_all(staging).map_err(|e| Error::write(staging, e))?;
     let mesh = crate::mesh::PlateMesh::new(&scene.plate, &scene.mesh);
@@ -207,7 +192,7 @@ fn run_into(scene: &Scene, staging: &Path, progress: Progress) -> Result<Outcome
         frames: Vec::new(),
         progress,
     };
-    let outcome = simulate(scene, &mut observer);
+    let outcome = simulate_within(scene, &mut observer, max_memory);
     observer.progress.finish();
     let outcome = outcome?;
     write_history(&outcome.history, &staging.join("history.csv"))?;

@@ -287,3 +287,29 @@ fn a_feather_weight_impactor_is_reported_as_the_cause_of_the_instability() {
         ],
     );
 }
+
+#[test]
+fn every_run_refuses_a_billion_elements_before_allocating() {
+    // Not only the CLI's `simulate`: the library entry the harness and the Python package
+    // call (`impact.simulate` without `out=`) estimates and refuses too, at once.
+    let text = EXAMPLE.replace("nx: 80, ny: 16", "nx: 100000, ny: 10000");
+    let scene = Scene::from_yaml(&text, Path::new("huge.yaml")).unwrap();
+    let started = std::time::Instant::now();
+    let err = impact_solver::simulate(&scene, &mut impact_solver::Quiet)
+        .err()
+        .expect("a 1e9-element run must be refused")
+        .to_string();
+    assert!(
+        started.elapsed().as_secs_f64() < 1.0,
+        "{:?}",
+        started.elapsed()
+    );
+    assert_mentions(&err, &["1.00e9 elements", "GB of memory", "mesh.nx"]);
+    // An explicit limit below a small run's estimate refuses it as well.
+    let small = Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap();
+    let err = impact_solver::simulate_within(&small, &mut impact_solver::Quiet, Some(1.0e3))
+        .err()
+        .expect("a 1 kB limit must refuse")
+        .to_string();
+    assert_mentions(&err, &["--max-memory"]);
+}

@@ -632,7 +632,11 @@ mod label_tests {
         assert_eq!(check_label(&check("FAIL", true)), "FAIL*");
         assert_eq!(check_label(&check("FAIL", false)), "FAIL");
         assert_eq!(check_label(&check("OK", true)), "XPASS");
-        let (ok, star, fail) = (check("OK", false), check("FAIL", true), check("FAIL", false));
+        let (ok, star, fail) = (
+            check("OK", false),
+            check("FAIL", true),
+            check("FAIL", false),
+        );
         assert_eq!(case_label(&[ok.clone(), star.clone()]), "FAIL*");
         assert_eq!(case_label(&[ok.clone(), star, fail]), "FAIL");
         assert_eq!(case_label(&[ok]), "OK");
@@ -643,7 +647,10 @@ mod label_tests {
     fn one_sided_checks_show_the_margin_not_an_error() {
         let at_most = json!({"compare": "at_most", "computed": 1.0e-7, "reference": 1.0e-6,
                              "error": 68.0, "error_kind": "absolute"});
-        assert_eq!(error_cell(&at_most), format!("margin {}", fmt(Some(9.0e-7))));
+        assert_eq!(
+            error_cell(&at_most),
+            format!("margin {}", fmt(Some(9.0e-7)))
+        );
         let at_least = json!({"compare": "at_least", "computed": 3.0, "reference": 5.0});
         assert_eq!(error_cell(&at_least), format!("margin {}", fmt(Some(-2.0))));
         let within = json!({"compare": "within", "computed": 1.1, "reference": 1.0,
