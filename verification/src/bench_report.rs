@@ -269,117 +269,15 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         sort_work_precision(t);
     }
     for p in &problems {
-        let svg_path = dir.join(format!("work-precision-{p}.svg"));
-        let (svg, svg_file) = match std::fs::read_to_string(&svg_path)
-            .ok()
-            .and_then(|s| svg_element(&s))
-        {
-            Some(svg) => {
-                let name = format!(
-                    "plots/benchmarks-work-precision-{}.svg",
-                    crate::markdown::slug(p)
-                );
-                let _ = std::fs::write(out.join(&name), &svg);
-                (svg, name)
-            }
-            None => (String::new(), String::new()),
-        };
-        let mut front = Value::Null;
-        let mut n_configs = 0;
-        if let Some(t) = &sorted {
-            let idx = pareto(t, p);
-            let col = |name: &str| t.header.iter().position(|h| h == name);
-            if let Some(pc) = col("problem") {
-                n_configs = t.rows.iter().filter(|r| r[pc] == *p).count();
-            }
-            let keep: Vec<usize> = [
-                "element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s",
-            ]
-            .iter()
-            .filter_map(|c| col(c))
-            .collect();
-            let (s, l) = (col("setup_s"), col("loop_s"));
-            let mut header: Vec<String> = keep.iter().map(|&i| t.header[i].clone()).collect();
-            header.push("total_s".into());
-            let rows = idx
-                .iter()
-                .map(|&i| {
-                    let r = &t.rows[i];
-                    let mut row: Vec<String> = keep.iter().map(|&k| r[k].clone()).collect();
-                    let total = s
-                        .zip(l)
-                        .map(|(s, l)| num(&r[s]) + num(&r[l]))
-                        .unwrap_or(f64::NAN);
-                    row.push(format!("{total:.4e}"));
-                    row
-                })
-                .collect();
-            front = table_value(&Table { header, rows });
-        }
-        wp_problems.push(
-            json!({"name": p, "svg": svg, "svg_file": svg_file, "pareto": front, "n": n_configs}),
-        );
+        wp_problems.push(problem_entry(p, dir, out, sorted.as_ref()));
     }
     // The whole table, with the Pareto membership marked.
-    let all = sorted.as_ref().map(|t| {
-        let mut on = std::collections::BTreeSet::new();
-        for p in &problems {
-            on.extend(pareto(t, p));
-        }
-        let mut t2 = t.clone();
-        t2.header.push("pareto".into());
-        for (i, r) in t2.rows.iter_mut().enumerate() {
-            r.push(if on.contains(&i) {
-                "front".into()
-            } else {
-                String::new()
-            });
-        }
-        table_value(&t2)
-    });
-    let levels = sorted.as_ref().map(|t| {
-        let vals = |name: &str| -> Vec<String> {
-            let Some(c) = t.header.iter().position(|h| h == name) else {
-                return Vec::new();
-            };
-            let mut v: Vec<String> = Vec::new();
-            for r in &t.rows {
-                if !v.contains(&r[c]) {
-                    v.push(r[c].clone());
-                }
-            }
-            v
-        };
-        let mut meshes = vals("mesh");
-        meshes.sort_by_key(|m| mesh_key(m));
-        let mut cfls = vals("cfl");
-        cfls.sort_by(|a, b| num(a).total_cmp(&num(b)));
-        format!(
-            "{} configurations: elements {}; meshes {}; CFL fractions {}",
-            t.rows.len(),
-            vals("element").join(", "),
-            meshes.join(", "),
-            cfls.join(", ")
-        )
-    });
+    let all = sorted.as_ref().map(|t| with_front(t, &problems));
+    let levels = sorted.as_ref().map(levels_line);
 
     let stability = stab_md_path
         .as_ref()
-        .and_then(|p| std::fs::read_to_string(p).ok())
-        .map(|text| {
-            let e = embed(
-                &text,
-                &Embed {
-                    base: dir,
-                    top_level: 4,
-                    anchor_prefix: "bench-",
-                    out,
-                    copy_to: "benchmarks",
-                    section_title: None,
-                },
-            );
-            json!({"html": e.html, "md": e.md})
-        });
+        .and_then(|p| stability_page(p, dir, out));
     json!({
         "present": true,
         "dir": dir.display().to_string(),
@@ -398,6 +296,121 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         "missing": missing,
         "errors": errors,
     })
+}
+
+/// One work-precision problem: its plot (copied to `out/plots/`), its Pareto front with the
+/// total time, and how many configurations it has.
+fn problem_entry(p: &str, dir: &Path, out: &Path, sorted: Option<&Table>) -> Value {
+    let svg_path = dir.join(format!("work-precision-{p}.svg"));
+    let (svg, svg_file) = match std::fs::read_to_string(&svg_path)
+        .ok()
+        .and_then(|s| svg_element(&s))
+    {
+        Some(svg) => {
+            let name = format!(
+                "plots/benchmarks-work-precision-{}.svg",
+                crate::markdown::slug(p)
+            );
+            let _ = std::fs::write(out.join(&name), &svg);
+            (svg, name)
+        }
+        None => (String::new(), String::new()),
+    };
+    let mut front = Value::Null;
+    let mut n_configs = 0;
+    if let Some(t) = sorted {
+        let idx = pareto(t, p);
+        let col = |name: &str| t.header.iter().position(|h| h == name);
+        if let Some(pc) = col("problem") {
+            n_configs = t.rows.iter().filter(|r| r[pc] == *p).count();
+        }
+        let keep: Vec<usize> = [
+            "element", "mesh", "cfl", "dt_s", "error", "setup_s", "loop_s",
+        ]
+        .iter()
+        .filter_map(|c| col(c))
+        .collect();
+        let (s, l) = (col("setup_s"), col("loop_s"));
+        let mut header: Vec<String> = keep.iter().map(|&i| t.header[i].clone()).collect();
+        header.push("total_s".into());
+        let rows = idx
+            .iter()
+            .map(|&i| {
+                let r = &t.rows[i];
+                let mut row: Vec<String> = keep.iter().map(|&k| r[k].clone()).collect();
+                let total = s
+                    .zip(l)
+                    .map(|(s, l)| num(&r[s]) + num(&r[l]))
+                    .unwrap_or(f64::NAN);
+                row.push(format!("{total:.4e}"));
+                row
+            })
+            .collect();
+        front = table_value(&Table { header, rows });
+    }
+    json!({"name": p, "svg": svg, "svg_file": svg_file, "pareto": front, "n": n_configs})
+}
+
+/// "N configurations: elements ...; meshes ...; CFL fractions ..." of the work-precision table.
+fn levels_line(t: &Table) -> String {
+    let vals = |name: &str| -> Vec<String> {
+        let Some(c) = t.header.iter().position(|h| h == name) else {
+            return Vec::new();
+        };
+        let mut v: Vec<String> = Vec::new();
+        for r in &t.rows {
+            if !v.contains(&r[c]) {
+                v.push(r[c].clone());
+            }
+        }
+        v
+    };
+    let mut meshes = vals("mesh");
+    meshes.sort_by_key(|m| mesh_key(m));
+    let mut cfls = vals("cfl");
+    cfls.sort_by(|a, b| num(a).total_cmp(&num(b)));
+    format!(
+        "{} configurations: elements {}; meshes {}; CFL fractions {}",
+        t.rows.len(),
+        vals("element").join(", "),
+        meshes.join(", "),
+        cfls.join(", ")
+    )
+}
+
+/// The whole work-precision table with a column `pareto` marking the fronts of `problems`.
+fn with_front(t: &Table, problems: &[String]) -> Value {
+    let mut on = std::collections::BTreeSet::new();
+    for p in problems {
+        on.extend(pareto(t, p));
+    }
+    let mut t2 = t.clone();
+    t2.header.push("pareto".into());
+    for (i, r) in t2.rows.iter_mut().enumerate() {
+        r.push(if on.contains(&i) {
+            "front".into()
+        } else {
+            String::new()
+        });
+    }
+    table_value(&t2)
+}
+
+/// stability.md embedded (headings from level 4, its files copied to `out/benchmarks/`).
+fn stability_page(path: &Path, dir: &Path, out: &Path) -> Option<Value> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let e = embed(
+        &text,
+        &Embed {
+            base: dir,
+            top_level: 4,
+            anchor_prefix: "bench-",
+            out,
+            copy_to: "benchmarks",
+            section_title: None,
+        },
+    );
+    Some(json!({"html": e.html, "md": e.md}))
 }
 
 #[cfg(test)]

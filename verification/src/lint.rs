@@ -102,6 +102,22 @@ fn lint_case(
     requirement_ids: &mut BTreeMap<String, Loc>,
     case_ids: &mut BTreeMap<String, Loc>,
 ) {
+    lint_identity(case, out, requirement_ids, case_ids);
+    let scenes = lint_scenes(case, out);
+    let mut check_ids = BTreeSet::new();
+    for c in &case.file.checks {
+        lint_check(repo, case, c, &scenes, &mut check_ids, out);
+    }
+}
+
+/// The requirement (id unique, a "shall" sentence), the case id (unique), the case's skip
+/// reason and that it has checks.
+fn lint_identity(
+    case: &Case,
+    out: &mut Vec<Finding>,
+    requirement_ids: &mut BTreeMap<String, Loc>,
+    case_ids: &mut BTreeMap<String, Loc>,
+) {
     let f = &case.file;
     let mut push = |loc: Loc, message: String| out.push(Finding { loc, message });
     let rid = &f.requirement.id;
@@ -143,6 +159,13 @@ fn lint_case(
             "a case needs at least one check".into(),
         );
     }
+}
+
+/// The series, scene files and wrong models name what the case has; returns every scene name
+/// a measure may use (the case's scenes and the series' levels).
+fn lint_scenes(case: &Case, out: &mut Vec<Finding>) -> BTreeSet<String> {
+    let f = &case.file;
+    let mut push = |loc: Loc, message: String| out.push(Finding { loc, message });
     let mut scenes: BTreeSet<String> = f.scenes.keys().cloned().collect();
     for (name, s) in &f.series {
         for l in &s.value.levels {
@@ -181,147 +204,167 @@ fn lint_case(
             push(case.loc(m), format!("wrong model {name}: no scene {s:?}"));
         }
     }
-    let mut check_ids = BTreeSet::new();
-    for c in &f.checks {
-        let loc = case.loc(c);
-        let k = &c.value;
-        if !check_ids.insert(k.id.clone()) {
-            push(loc.clone(), format!("duplicate check id {:?}", k.id));
-        }
-        let mut measure_findings = Vec::new();
-        let case_skipped = f.skip.as_ref().is_some_and(|s| s.value.is_skip());
-        if !case_skipped {
-            lint_measure(
-                &k.measure.value,
-                f.scenes.len() == 1,
-                &scenes,
-                &f.series,
-                &mut measure_findings,
+    scenes
+}
+
+/// One check: a unique id, a measure of what the case defines, skip and known-failure
+/// reasons, its reference and its tolerance.
+fn lint_check(
+    repo: &Repo,
+    case: &Case,
+    c: &serde_saphyr::Spanned<crate::case::CheckFile>,
+    scenes: &BTreeSet<String>,
+    check_ids: &mut BTreeSet<String>,
+    out: &mut Vec<Finding>,
+) {
+    let f = &case.file;
+    let loc = case.loc(c);
+    let k = &c.value;
+    let mut push = |loc: Loc, message: String| out.push(Finding { loc, message });
+    if !check_ids.insert(k.id.clone()) {
+        push(loc.clone(), format!("duplicate check id {:?}", k.id));
+    }
+    let mut measure_findings = Vec::new();
+    let case_skipped = f.skip.as_ref().is_some_and(|s| s.value.is_skip());
+    if !case_skipped {
+        lint_measure(
+            &k.measure.value,
+            f.scenes.len() == 1,
+            scenes,
+            &f.series,
+            &mut measure_findings,
+        );
+    }
+    for m in measure_findings {
+        push(case.loc(&k.measure), format!("check {}: {m}", k.id));
+    }
+    if let Some(s) = &k.skip {
+        if s.value.is_skip() && s.value.reason().is_none() {
+            push(
+                case.loc(s),
+                format!("check {}: a skip needs a reason: skip: \"why\"", k.id),
             );
         }
-        for m in measure_findings {
-            push(case.loc(&k.measure), format!("check {}: {m}", k.id));
-        }
-        if let Some(s) = &k.skip {
-            if s.value.is_skip() && s.value.reason().is_none() {
-                push(
-                    case.loc(s),
-                    format!("check {}: a skip needs a reason: skip: \"why\"", k.id),
-                );
-            }
-        }
-        if let Some(kf) = &k.known_failure {
-            if kf.trim().is_empty() {
-                push(
-                    loc.clone(),
-                    format!("check {}: known_failure needs a reason", k.id),
-                );
-            }
-        }
-        match &k.reference {
-            None => push(
+    }
+    if let Some(kf) = &k.known_failure {
+        if kf.trim().is_empty() {
+            push(
                 loc.clone(),
-                format!(
-                    "check {}: no reference (needs kind, a value source and `source`)",
-                    k.id
-                ),
-            ),
-            Some(r) => {
-                let rloc = case.loc(r);
-                let rv = &r.value;
-                if rv.kind.is_none() {
-                    push(rloc.clone(), format!("check {}: the reference has no kind (analytical | independent code | paper | invariant | regression | acceptance)", k.id));
-                }
-                if rv.source.as_deref().is_none_or(|s| s.trim().is_empty()) {
-                    push(
-                        rloc.clone(),
-                        format!("check {}: the reference has no source line", k.id),
-                    );
-                }
-                if let Some(p) = &rv.pending {
-                    if p.trim().is_empty() {
-                        push(
-                            rloc.clone(),
-                            format!("check {}: a pending reference needs a reason", k.id),
-                        );
-                    }
-                }
-                let mut files = Vec::new();
-                if let Some(t) = &rv.table {
-                    files.push(&t.file);
-                }
-                if let Some(j) = &rv.json {
-                    files.push(&j.file);
-                }
-                if let Some(h) = &rv.history {
-                    if let Some(file) = &h.file {
-                        files.push(file);
-                    }
-                }
-                for file in files {
-                    let path = repo.root.join(file);
-                    if !Path::new(file).starts_with("reference-data") {
-                        push(
-                            rloc.clone(),
-                            format!(
-                                "check {}: reference file {file:?} must live under reference-data/",
-                                k.id
-                            ),
-                        );
-                    } else if rv.pending.is_some() {
-                        // Not there yet: it must come with its provenance note.
-                    } else if !has_provenance(&repo.root, &path) {
-                        push(rloc.clone(), format!("check {}: reference file {file:?} has no provenance note (PROVENANCE.md in its folder)", k.id));
-                    } else if !path.is_file() {
-                        push(rloc.clone(), format!("check {}: reference file {file:?} does not exist (declare it `pending: reason` until it does)", k.id));
-                    }
-                }
-                if let Some(m) = &rv.metric {
-                    let mut fs = Vec::new();
-                    lint_measure(m, true, &scenes, &f.series, &mut fs);
-                    for m in fs {
-                        push(
-                            rloc.clone(),
-                            format!("check {}: reference metric: {m}", k.id),
-                        );
-                    }
-                }
-            }
+                format!("check {}: known_failure needs a reason", k.id),
+            );
         }
-        match &k.tolerance {
-            None => push(
-                loc.clone(),
-                format!(
-                    "check {}: no tolerance (relative and/or absolute, with a reason)",
-                    k.id
-                ),
+    }
+    match &k.reference {
+        None => push(
+            loc.clone(),
+            format!(
+                "check {}: no reference (needs kind, a value source and `source`)",
+                k.id
             ),
-            Some(t) => {
-                let tv = &t.value;
-                if tv.reason.as_deref().is_none_or(|s| s.trim().is_empty()) {
-                    push(
-                        case.loc(t),
-                        format!("check {}: the tolerance has no reason", k.id),
-                    );
-                }
-                let bad = |x: Option<f64>| x.is_some_and(|v| !(v.is_finite() && v >= 0.0));
-                if bad(tv.relative) || bad(tv.absolute) || bad(tv.floor) {
-                    push(
-                        case.loc(t),
-                        format!("check {}: tolerances must be finite and >= 0", k.id),
-                    );
-                }
-                if tv.relative.is_none() && tv.absolute.is_none() {
-                    push(
-                        case.loc(t),
-                        format!(
-                            "check {}: the tolerance needs relative and/or absolute (0 for exact)",
-                            k.id
-                        ),
-                    );
-                }
-            }
+        ),
+        Some(r) => lint_reference(repo, case, &k.id, r, scenes, out),
+    }
+    match &k.tolerance {
+        None => out.push(Finding {
+            loc,
+            message: format!(
+                "check {}: no tolerance (relative and/or absolute, with a reason)",
+                k.id
+            ),
+        }),
+        Some(t) => lint_tolerance(case, &k.id, t, out),
+    }
+}
+
+/// A check's reference: a kind, a source line, a pending reason, its files under
+/// reference-data/ with provenance, and its metric.
+fn lint_reference(
+    repo: &Repo,
+    case: &Case,
+    id: &str,
+    r: &serde_saphyr::Spanned<crate::case::ReferenceFile>,
+    scenes: &BTreeSet<String>,
+    out: &mut Vec<Finding>,
+) {
+    let rloc = case.loc(r);
+    let rv = &r.value;
+    let mut push = |message: String| {
+        out.push(Finding {
+            loc: rloc.clone(),
+            message: format!("check {id}: {message}"),
+        })
+    };
+    if rv.kind.is_none() {
+        push("the reference has no kind (analytical | independent code | paper | invariant | regression | acceptance)".into());
+    }
+    if rv.source.as_deref().is_none_or(|s| s.trim().is_empty()) {
+        push("the reference has no source line".into());
+    }
+    if let Some(p) = &rv.pending {
+        if p.trim().is_empty() {
+            push("a pending reference needs a reason".into());
         }
+    }
+    let mut files = Vec::new();
+    if let Some(t) = &rv.table {
+        files.push(&t.file);
+    }
+    if let Some(j) = &rv.json {
+        files.push(&j.file);
+    }
+    if let Some(h) = &rv.history {
+        if let Some(file) = &h.file {
+            files.push(file);
+        }
+    }
+    for file in files {
+        let path = repo.root.join(file);
+        if !Path::new(file).starts_with("reference-data") {
+            push(format!(
+                "reference file {file:?} must live under reference-data/"
+            ));
+        } else if rv.pending.is_some() {
+            // Not there yet: it must come with its provenance note.
+        } else if !has_provenance(&repo.root, &path) {
+            push(format!(
+                "reference file {file:?} has no provenance note (PROVENANCE.md in its folder)"
+            ));
+        } else if !path.is_file() {
+            push(format!("reference file {file:?} does not exist (declare it `pending: reason` until it does)"));
+        }
+    }
+    if let Some(m) = &rv.metric {
+        let mut fs = Vec::new();
+        lint_measure(m, true, scenes, &case.file.series, &mut fs);
+        for m in fs {
+            push(format!("reference metric: {m}"));
+        }
+    }
+}
+
+/// A check's tolerance: a reason, finite non-negative values, relative and/or absolute.
+fn lint_tolerance(
+    case: &Case,
+    id: &str,
+    t: &serde_saphyr::Spanned<crate::case::ToleranceFile>,
+    out: &mut Vec<Finding>,
+) {
+    let tv = &t.value;
+    let mut push = |message: &str| {
+        out.push(Finding {
+            loc: case.loc(t),
+            message: format!("check {id}: {message}"),
+        })
+    };
+    if tv.reason.as_deref().is_none_or(|s| s.trim().is_empty()) {
+        push("the tolerance has no reason");
+    }
+    let bad = |x: Option<f64>| x.is_some_and(|v| !(v.is_finite() && v >= 0.0));
+    if bad(tv.relative) || bad(tv.absolute) || bad(tv.floor) {
+        push("tolerances must be finite and >= 0");
+    }
+    if tv.relative.is_none() && tv.absolute.is_none() {
+        push("the tolerance needs relative and/or absolute (0 for exact)");
     }
 }
 
