@@ -173,33 +173,68 @@ fn shifted(l: HeadingLevel, shift: isize) -> HeadingLevel {
     HeadingLevel::try_from(n).unwrap_or(HeadingLevel::H6)
 }
 
+/// A heading of a page: its event index, level (1-6), words and source range.
+type Heading = (usize, usize, String, Range<usize>);
+
+/// The page's headings, in order.
+fn page_headings(text: &str) -> Vec<Heading> {
+    let mut v = Vec::new();
+    let mut current: Option<Heading> = None;
+    for (k, (e, r)) in Parser::new_ext(text, options())
+        .into_offset_iter()
+        .enumerate()
+    {
+        match e {
+            Event::Start(Tag::Heading { level, .. }) => {
+                current = Some((k, level_num(level), String::new(), r))
+            }
+            Event::Text(t) | Event::Code(t) => {
+                if let Some(c) = current.as_mut() {
+                    c.2.push_str(&t);
+                }
+            }
+            Event::End(TagEnd::Heading(_)) => v.extend(current.take()),
+            _ => {}
+        }
+    }
+    v
+}
+
+/// A local file the page links to (`path`, `rel` to the page), copied next to the report
+/// once: its path there, or None (noted as missing) when it does not exist.
+fn copy_local(how: &Embed, path: &Path, rel: &str, out: &mut Embedded) -> Option<String> {
+    if !path.is_file() {
+        if !out.missing.iter().any(|m| m == rel) {
+            out.missing.push(rel.to_string());
+        }
+        return None;
+    }
+    let target_rel = format!("{}/{rel}", how.copy_to);
+    if !out.copied.contains(&target_rel) {
+        let target = how.out.join(&target_rel);
+        let same = match (path.canonicalize(), target.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        };
+        if !same {
+            if let Some(parent) = target.parent() {
+                let _ = std::fs::create_dir_all(parent);
+            }
+            if std::fs::copy(path, &target).is_err() {
+                return None;
+            }
+        }
+        out.copied.push(target_rel.clone());
+    }
+    Some(target_rel)
+}
+
 /// Embeds a Markdown page: see the module documentation.
 pub fn embed(text: &str, how: &Embed) -> Embedded {
     let mut out = Embedded::default();
     // Heading shift: the page's smallest level becomes `top_level`.
     // A title that repeats the section's: its events (HTML) and source range (Markdown).
-    let headings: Vec<(usize, usize, String, Range<usize>)> = {
-        let mut v = Vec::new();
-        let mut current: Option<(usize, usize, String, Range<usize>)> = None;
-        for (k, (e, r)) in Parser::new_ext(text, options())
-            .into_offset_iter()
-            .enumerate()
-        {
-            match e {
-                Event::Start(Tag::Heading { level, .. }) => {
-                    current = Some((k, level_num(level), String::new(), r))
-                }
-                Event::Text(t) | Event::Code(t) => {
-                    if let Some(c) = current.as_mut() {
-                        c.2.push_str(&t);
-                    }
-                }
-                Event::End(TagEnd::Heading(_)) => v.extend(current.take()),
-                _ => {}
-            }
-        }
-        v
-    };
+    let headings = page_headings(text);
     let top = headings.iter().map(|h| h.1).min();
     let title = headings.first().filter(|h| {
         h.0 == 0
@@ -215,41 +250,27 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
         .min()
         .unwrap_or(how.top_level);
     let shift = how.top_level as isize - min_level as isize;
+    let md = markdown_with_edits(text, how, title_range.as_ref(), shift, &mut out);
+    out.md = md;
+    let html = html_with_figures(text, how, title.is_some(), shift, &mut out.missing);
+    out.html = html;
+    out
+}
 
-    // Local files the page links to: copied next to the report, once each.
-    let copy = |path: &Path, rel: &str, out: &mut Embedded| -> Option<String> {
-        if !path.is_file() {
-            if !out.missing.iter().any(|m| m == rel) {
-                out.missing.push(rel.to_string());
-            }
-            return None;
-        }
-        let target_rel = format!("{}/{rel}", how.copy_to);
-        if !out.copied.contains(&target_rel) {
-            let target = how.out.join(&target_rel);
-            let same = match (path.canonicalize(), target.canonicalize()) {
-                (Ok(a), Ok(b)) => a == b,
-                _ => false,
-            };
-            if !same {
-                if let Some(parent) = target.parent() {
-                    let _ = std::fs::create_dir_all(parent);
-                }
-                if std::fs::copy(path, &target).is_err() {
-                    return None;
-                }
-            }
-            out.copied.push(target_rel.clone());
-        }
-        Some(target_rel)
-    };
-
-    // --- Markdown: the source with edits (heading levels, link destinations).
+/// The Markdown source with edits: heading levels shifted, the repeated title removed, local
+/// link and image destinations pointing at the copies.
+fn markdown_with_edits(
+    text: &str,
+    how: &Embed,
+    title_range: Option<&Range<usize>>,
+    shift: isize,
+    out: &mut Embedded,
+) -> String {
     let mut edits: Vec<(Range<usize>, String)> = Vec::new();
     let parser = Parser::new_ext(text, options());
     for (_, def) in parser.reference_definitions().iter() {
         if let Some((path, rel, frag)) = local(how.base, &def.dest) {
-            if let Some(new) = copy(&path, &rel, &mut out) {
+            if let Some(new) = copy_local(how, &path, &rel, out) {
                 let span = &text[def.span.clone()];
                 if let Some(colon) = span.find("]:") {
                     if let Some(i) = span[colon..].find(def.dest.as_ref()) {
@@ -260,14 +281,11 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             }
         }
     }
-    if let Some(r) = &title_range {
+    if let Some(r) = title_range {
         edits.push((r.clone(), String::new()));
     }
     for (event, range) in parser.into_offset_iter() {
-        if title_range
-            .as_ref()
-            .is_some_and(|t| range.start >= t.start && range.end <= t.end)
-        {
+        if title_range.is_some_and(|t| range.start >= t.start && range.end <= t.end) {
             continue;
         }
         match event {
@@ -295,7 +313,7 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
                 let Some((path, rel, frag)) = local(how.base, &dest_url) else {
                     continue;
                 };
-                let Some(new) = copy(&path, &rel, &mut out) else {
+                let Some(new) = copy_local(how, &path, &rel, out) else {
                     continue;
                 };
                 let src = &text[range.clone()];
@@ -310,6 +328,11 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
             _ => {}
         }
     }
+    splice(text, edits)
+}
+
+/// `text` with each `(range, replacement)` applied, in source order.
+fn splice(text: &str, mut edits: Vec<(Range<usize>, String)>) -> String {
     edits.sort_by_key(|e| (e.0.start, e.0.end));
     let mut md = String::with_capacity(text.len() + 64);
     let mut at = 0;
@@ -322,20 +345,22 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
         at = r.end;
     }
     md.push_str(&text[at..]);
-    out.md = md;
+    md
+}
 
-    // --- HTML: the events, headings shifted with ids, local images inlined (each with an id).
-    // A link to a local SVG points at the page's inline figure of it; a linked SVG the page
-    // does not show is inlined after the top-level block holding the link.
+/// The page as HTML: the events, headings shifted with ids, local images inlined (each with
+/// an id). A link to a local SVG points at the page's inline figure of it; a linked SVG the
+/// page does not show is inlined after the top-level block holding the link. `skip_title`:
+/// the first heading repeats the section's and is left out.
+fn html_with_figures(
+    text: &str,
+    how: &Embed,
+    skip_title: bool,
+    shift: isize,
+    missing: &mut Vec<String>,
+) -> String {
     let events: Vec<Event> = Parser::new_ext(text, options()).collect();
-    let figure_id = |rel: &str| {
-        format!(
-            "{}fig-{}",
-            how.anchor_prefix,
-            slug(&rel.replace(['/', '.'], "-"))
-        )
-    };
-    let mut shown: Vec<String> = events
+    let shown: Vec<String> = events
         .iter()
         .filter_map(|e| match e {
             Event::Start(Tag::Image { dest_url, .. }) => local(how.base, dest_url)
@@ -354,158 +379,230 @@ pub fn embed(text: &str, how: &Embed) -> Embedded {
         }
         depth_after.push(depth);
     }
-    let mut html_events: Vec<Event> = Vec::with_capacity(events.len());
-    let mut used_ids: Vec<String> = Vec::new();
-    let mut with_id: Vec<String> = Vec::new();
-    let mut pending: Vec<String> = Vec::new();
+    let mut page = HtmlPage {
+        how,
+        shift,
+        events: &events,
+        html: Vec::with_capacity(events.len()),
+        used_ids: Vec::new(),
+        with_id: Vec::new(),
+        pending: Vec::new(),
+        shown,
+        missing,
+    };
     let mut i = 0;
-    if title.is_some() {
+    if skip_title {
         i = events
             .iter()
             .position(|e| matches!(e, Event::End(TagEnd::Heading(_))))
             .map_or(0, |j| j + 1);
     }
     while i < events.len() {
-        let mut last = i; // the last event this step consumed
-        match &events[i] {
-            Event::Start(Tag::Heading {
-                level,
-                id,
-                classes,
-                attrs,
-            }) => {
-                let mut j = i + 1;
-                let mut words = String::new();
-                while j < events.len() && !matches!(events[j], Event::End(TagEnd::Heading(_))) {
-                    if let Event::Text(t) | Event::Code(t) = &events[j] {
-                        words.push_str(t);
-                    }
-                    j += 1;
-                }
-                let mut anchor = format!(
-                    "{}{}",
-                    how.anchor_prefix,
-                    id.as_deref()
-                        .map(str::to_string)
-                        .unwrap_or_else(|| slug(&words))
-                );
-                let base_anchor = anchor.clone();
-                let mut k = 1;
-                while used_ids.contains(&anchor) {
-                    anchor = format!("{base_anchor}-{k}");
-                    k += 1;
-                }
-                used_ids.push(anchor.clone());
-                html_events.push(Event::Start(Tag::Heading {
-                    level: shifted(*level, shift),
-                    id: Some(CowStr::from(anchor)),
-                    classes: classes.clone(),
-                    attrs: attrs.clone(),
-                }));
-            }
+        // The last event this step consumed.
+        let last = match &events[i] {
+            Event::Start(Tag::Heading { .. }) => page.heading(i),
             Event::End(TagEnd::Heading(level)) => {
-                html_events.push(Event::End(TagEnd::Heading(shifted(*level, shift))))
+                page.html
+                    .push(Event::End(TagEnd::Heading(shifted(*level, shift))));
+                i
             }
-            Event::Start(Tag::Image {
-                dest_url, title, ..
-            }) => {
-                // The alt text, up to the matching end.
-                let mut j = i + 1;
-                let mut nested = 0;
-                let mut alt = String::new();
-                while j < events.len() {
-                    match &events[j] {
-                        Event::Start(Tag::Image { .. }) => nested += 1,
-                        Event::End(TagEnd::Image) if nested == 0 => break,
-                        Event::End(TagEnd::Image) => nested -= 1,
-                        Event::Text(t) | Event::Code(t) => alt.push_str(t),
-                        _ => {}
-                    }
-                    j += 1;
-                }
-                match local(how.base, dest_url) {
-                    Some((path, rel, _)) => {
-                        let img = match img_data_uri(&path, &alt, title) {
-                            Some(img) if !with_id.contains(&rel) => {
-                                with_id.push(rel.clone());
-                                img.replacen(
-                                    "<img ",
-                                    &format!("<img id=\"{}\" ", figure_id(&rel)),
-                                    1,
-                                )
-                            }
-                            Some(img) => img,
-                            None => {
-                                if !out.missing.contains(&rel) {
-                                    out.missing.push(rel.clone());
-                                }
-                                format!("<span class=\"missing\">[figure {} not found next to the page]</span>", escape(&rel))
-                            }
-                        };
-                        html_events.push(Event::InlineHtml(CowStr::from(img)));
-                        last = j.min(events.len() - 1);
-                    }
-                    None => html_events.push(events[i].clone()),
-                }
+            Event::Start(Tag::Image { .. }) => page.image(i),
+            Event::Start(Tag::Link { .. }) => page.link(i),
+            e => {
+                page.html.push(e.clone());
+                i
             }
-            Event::Start(Tag::Link {
-                link_type,
-                dest_url,
-                title,
-                id,
-            }) => {
-                let link = |dest: String| {
-                    Event::Start(Tag::Link {
-                        link_type: *link_type,
-                        dest_url: CowStr::from(dest),
-                        title: title.clone(),
-                        id: id.clone(),
-                    })
-                };
-                if let Some(anchor) = dest_url.strip_prefix('#') {
-                    html_events.push(link(format!("#{}{anchor}", how.anchor_prefix)));
-                } else if let Some((path, rel, frag)) = local(how.base, dest_url) {
-                    if is_svg(&path) && shown.contains(&rel) {
-                        html_events.push(link(format!("#{}", figure_id(&rel))));
-                    } else {
-                        html_events.push(link(format!("{}/{rel}{frag}", how.copy_to)));
-                        if is_svg(&path) {
-                            if let Some(img) = img_data_uri(&path, &rel, title) {
-                                html_events.pop();
-                                html_events.push(link(format!("#{}", figure_id(&rel))));
-                                pending.push(img.replacen(
-                                    "<img ",
-                                    &format!("<img id=\"{}\" ", figure_id(&rel)),
-                                    1,
-                                ));
-                                shown.push(rel.clone());
-                                with_id.push(rel);
-                            }
-                        }
-                    }
-                } else {
-                    html_events.push(events[i].clone());
-                }
-            }
-            e => html_events.push(e.clone()),
-        }
-        if !pending.is_empty() && matches!(events[last], Event::End(_)) && depth_after[last] == 0 {
-            html_events.push(Event::Html(CowStr::from(format!(
-                "<p>{}</p>\n",
-                pending.join(" ")
-            ))));
-            pending.clear();
+        };
+        if !page.pending.is_empty()
+            && matches!(events[last], Event::End(_))
+            && depth_after[last] == 0
+        {
+            page.flush_pending();
         }
         i = last + 1;
     }
-    if !pending.is_empty() {
-        html_events.push(Event::Html(CowStr::from(format!(
-            "<p>{}</p>\n",
-            pending.join(" ")
-        ))));
+    if !page.pending.is_empty() {
+        page.flush_pending();
     }
-    pulldown_cmark::html::push_html(&mut out.html, html_events.into_iter());
-    out
+    let mut html = String::new();
+    pulldown_cmark::html::push_html(&mut html, page.html.into_iter());
+    html
+}
+
+/// The state of the HTML pass over a page's events.
+struct HtmlPage<'e, 'h> {
+    how: &'h Embed<'h>,
+    shift: isize,
+    events: &'e [Event<'e>],
+    html: Vec<Event<'e>>,
+    used_ids: Vec<String>,
+    /// Figures (paths relative to the page) whose inline image carries the figure id.
+    with_id: Vec<String>,
+    /// Linked SVGs to inline after the current top-level block.
+    pending: Vec<String>,
+    /// Figures the page shows inline.
+    shown: Vec<String>,
+    missing: &'h mut Vec<String>,
+}
+
+impl<'e> HtmlPage<'e, '_> {
+    fn figure_id(&self, rel: &str) -> String {
+        format!(
+            "{}fig-{}",
+            self.how.anchor_prefix,
+            slug(&rel.replace(['/', '.'], "-"))
+        )
+    }
+
+    /// `img` with the figure id of `rel`.
+    fn with_figure_id(&self, img: &str, rel: &str) -> String {
+        img.replacen("<img ", &format!("<img id=\"{}\" ", self.figure_id(rel)), 1)
+    }
+
+    fn flush_pending(&mut self) {
+        self.html.push(Event::Html(CowStr::from(format!(
+            "<p>{}</p>\n",
+            self.pending.join(" ")
+        ))));
+        self.pending.clear();
+    }
+
+    /// The heading opened at event `i`, shifted, with a unique id (prefixed).
+    fn heading(&mut self, i: usize) -> usize {
+        let events = self.events;
+        let Event::Start(Tag::Heading {
+            level,
+            id,
+            classes,
+            attrs,
+        }) = &events[i]
+        else {
+            return i;
+        };
+        let mut j = i + 1;
+        let mut words = String::new();
+        while j < events.len() && !matches!(events[j], Event::End(TagEnd::Heading(_))) {
+            if let Event::Text(t) | Event::Code(t) = &events[j] {
+                words.push_str(t);
+            }
+            j += 1;
+        }
+        let mut anchor = format!(
+            "{}{}",
+            self.how.anchor_prefix,
+            id.as_deref()
+                .map(str::to_string)
+                .unwrap_or_else(|| slug(&words))
+        );
+        let base_anchor = anchor.clone();
+        let mut k = 1;
+        while self.used_ids.contains(&anchor) {
+            anchor = format!("{base_anchor}-{k}");
+            k += 1;
+        }
+        self.used_ids.push(anchor.clone());
+        self.html.push(Event::Start(Tag::Heading {
+            level: shifted(*level, self.shift),
+            id: Some(CowStr::from(anchor)),
+            classes: classes.clone(),
+            attrs: attrs.clone(),
+        }));
+        i
+    }
+
+    /// The image opened at event `i`: a local one inlined (up to its end, which it consumes),
+    /// a remote one kept.
+    fn image(&mut self, i: usize) -> usize {
+        let events = self.events;
+        let Event::Start(Tag::Image {
+            dest_url, title, ..
+        }) = &events[i]
+        else {
+            return i;
+        };
+        // The alt text, up to the matching end.
+        let mut j = i + 1;
+        let mut nested = 0;
+        let mut alt = String::new();
+        while j < events.len() {
+            match &events[j] {
+                Event::Start(Tag::Image { .. }) => nested += 1,
+                Event::End(TagEnd::Image) if nested == 0 => break,
+                Event::End(TagEnd::Image) => nested -= 1,
+                Event::Text(t) | Event::Code(t) => alt.push_str(t),
+                _ => {}
+            }
+            j += 1;
+        }
+        let Some((path, rel, _)) = local(self.how.base, dest_url) else {
+            self.html.push(events[i].clone());
+            return i;
+        };
+        let img = match img_data_uri(&path, &alt, title) {
+            Some(img) if !self.with_id.contains(&rel) => {
+                self.with_id.push(rel.clone());
+                self.with_figure_id(&img, &rel)
+            }
+            Some(img) => img,
+            None => {
+                if !self.missing.contains(&rel) {
+                    self.missing.push(rel.clone());
+                }
+                format!(
+                    "<span class=\"missing\">[figure {} not found next to the page]</span>",
+                    escape(&rel)
+                )
+            }
+        };
+        self.html.push(Event::InlineHtml(CowStr::from(img)));
+        j.min(events.len() - 1)
+    }
+
+    /// The link opened at event `i`: anchors prefixed, local files pointing at their copies,
+    /// a local SVG at its inline figure (inlined after the block when the page does not show it).
+    fn link(&mut self, i: usize) -> usize {
+        let events = self.events;
+        let Event::Start(Tag::Link {
+            link_type,
+            dest_url,
+            title,
+            id,
+        }) = &events[i]
+        else {
+            return i;
+        };
+        let link = |dest: String| {
+            Event::Start(Tag::Link {
+                link_type: *link_type,
+                dest_url: CowStr::from(dest),
+                title: title.clone(),
+                id: id.clone(),
+            })
+        };
+        if let Some(anchor) = dest_url.strip_prefix('#') {
+            self.html
+                .push(link(format!("#{}{anchor}", self.how.anchor_prefix)));
+        } else if let Some((path, rel, frag)) = local(self.how.base, dest_url) {
+            if is_svg(&path) && self.shown.contains(&rel) {
+                self.html.push(link(format!("#{}", self.figure_id(&rel))));
+            } else if let Some(img) = is_svg(&path)
+                .then(|| img_data_uri(&path, &rel, title))
+                .flatten()
+            {
+                self.html.push(link(format!("#{}", self.figure_id(&rel))));
+                let tagged = self.with_figure_id(&img, &rel);
+                self.pending.push(tagged);
+                self.shown.push(rel.clone());
+                self.with_id.push(rel);
+            } else {
+                self.html
+                    .push(link(format!("{}/{rel}{frag}", self.how.copy_to)));
+            }
+        } else {
+            self.html.push(events[i].clone());
+        }
+        i
+    }
 }
 
 #[cfg(test)]
