@@ -24,6 +24,7 @@ import yaml
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
+from indep_fe.scene import with_dotted  # noqa: E402
 from indep_fe.compare import column_diffs, interval_steps, read_history, read_summary, summary_diffs  # noqa: E402
 
 RUST = ROOT / "target" / "release" / "impact"
@@ -51,17 +52,7 @@ KEY_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps", "mid
 
 
 def with_overrides(**over) -> dict:
-    d = copy.deepcopy(BASE)
-    for path, value in over.items():
-        keys = path.split(".")
-        node = d
-        for k in keys[:-1]:
-            node = node.setdefault(k, {})
-        if value is None:
-            node.pop(keys[-1], None)
-        else:
-            node[keys[-1]] = copy.deepcopy(value)
-    return d
+    return with_dotted(BASE, over)
 
 
 def cases(big: bool) -> dict[str, dict]:

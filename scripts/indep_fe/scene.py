@@ -1,6 +1,7 @@
 """Scene YAML (SI units) -> plain dataclasses, with validation."""
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -292,3 +293,19 @@ def parse_scene(data: dict) -> Scene:
 def load_scene(path: str | Path) -> Scene:
     with open(path) as fh:
         return parse_scene(yaml.safe_load(fh))
+
+
+def with_dotted(base: dict, over: dict) -> dict:
+    """A deep copy of the scene dict `base` with dotted-path overrides (the scene's YAML paths,
+    e.g. {"mesh.element": "q4-1pt"}); a value None removes the key."""
+    d = copy.deepcopy(base)
+    for path, value in over.items():
+        keys = path.split(".")
+        node = d
+        for k in keys[:-1]:
+            node = node.setdefault(k, {})
+        if value is None:
+            node.pop(keys[-1], None)
+        else:
+            node[keys[-1]] = copy.deepcopy(value)
+    return d

@@ -1,7 +1,6 @@
 """Small scenes for the tests (plain dicts, parsed like a YAML file)."""
-import copy
 
-from indep_fe.scene import parse_scene
+from indep_fe.scene import parse_scene, with_dotted
 
 BASE = {
     "plate": {"length": 0.200, "width": 0.200, "thickness": 0.020},
@@ -20,14 +19,4 @@ PLASTIC = {"yield_stress": 250.0e6, "hardening": {"linear": 1.5e9}}
 
 def scene(**over):
     """BASE with dotted-path overrides, e.g. scene(**{"mesh.element": "q4-1pt"})."""
-    d = copy.deepcopy(BASE)
-    for path, value in over.items():
-        keys = path.split(".")
-        node = d
-        for k in keys[:-1]:
-            node = node.setdefault(k, {})
-        if value is None:
-            node.pop(keys[-1], None)
-        else:
-            node[keys[-1]] = copy.deepcopy(value)
-    return parse_scene(d)
+    return parse_scene(with_dotted(BASE, over))
