@@ -83,26 +83,10 @@ mod tests {
     use super::*;
     use crate::element::{element_response, gather, FullQ4, OnePointQ4, SelectiveQ4};
     use crate::material::{Elastic, VonMises};
-    use crate::mesh::PlateMesh;
-    use crate::scene::{ElementKind, Hardening, Material, MeshSettings, Model, Plasticity, Plate};
+    use crate::scene::{Hardening, Material, Plasticity};
 
     fn check<F: Formulation>(make: impl Fn(&Mesh) -> F) {
-        let plate = Plate {
-            length: 0.2,
-            width: 0.2,
-            thickness: 0.02,
-            ends: crate::scene::Ends::Clamped,
-        };
-        let settings = MeshSettings {
-            nx: 12,
-            ny: 4,
-            element: ElementKind::Q4Sri,
-            model: Model::Half,
-            grading: 3.0,
-            hourglass: 0.05,
-            distortion: 0.0,
-        };
-        let mesh = PlateMesh::new(&plate, &settings);
+        let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);
         let material = VonMises::new(&Material {
             density: 7850.0,
             youngs_modulus: 207e9,
@@ -170,24 +154,7 @@ mod tests {
 
     #[test]
     fn an_elastic_material_has_no_screen() {
-        let plate = Plate {
-            length: 0.2,
-            width: 0.2,
-            thickness: 0.02,
-            ends: crate::scene::Ends::Clamped,
-        };
-        let mesh = PlateMesh::new(
-            &plate,
-            &MeshSettings {
-                nx: 4,
-                ny: 2,
-                element: ElementKind::Q4Sri,
-                model: Model::Half,
-                grading: 1.0,
-                hourglass: 0.05,
-                distortion: 0.0,
-            },
-        );
+        let mesh = crate::mesh::test_plate_mesh(4, 2, 1.0);
         let f = SelectiveQ4::new(&mesh.mesh, 0.2).unwrap();
         assert!(ElasticScreen::new(&f, &Elastic::new(207e9, 0.3), &mesh.mesh).is_none());
     }

@@ -232,6 +232,28 @@ fn x_stations(length: f64, nx: usize, grading: f64, model: Model) -> Vec<f64> {
     }
 }
 
+/// The paper's plate (200 x 20 mm, 0.2 m wide, clamped) as a q4-sri half model of
+/// `nx` x `ny` elements with `grading`: the mesh of the solver's unit tests.
+#[cfg(test)]
+pub(crate) fn test_plate_mesh(nx: usize, ny: usize, grading: f64) -> PlateMesh {
+    let plate = Plate {
+        length: 0.2,
+        width: 0.2,
+        thickness: 0.02,
+        ends: Ends::Clamped,
+    };
+    let settings = MeshSettings {
+        nx,
+        ny,
+        element: crate::scene::ElementKind::Q4Sri,
+        model: Model::Half,
+        grading,
+        hourglass: 0.05,
+        distortion: 0.0,
+    };
+    PlateMesh::new(&plate, &settings)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

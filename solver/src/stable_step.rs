@@ -133,42 +133,23 @@ mod tests {
     //! Reference: the dense eigenvalues of `M^-1/2 K M^-1/2` (nalgebra) on a small mesh; the
     //! element bound must lie above the global eigenvalue, the estimate just below it.
     use super::*;
-    use crate::element::{lumped_masses, SelectiveQ4};
-    use crate::mesh::PlateMesh;
-    use crate::scene::{ElementKind, MeshSettings, Model, Plate};
+    use crate::element::SelectiveQ4;
+    use crate::integrator::PlateModel;
 
     #[test]
     fn power_iteration_finds_the_largest_eigenvalue_below_the_element_bound() {
-        let plate = Plate {
-            length: 0.2,
-            width: 0.2,
-            thickness: 0.02,
-            ends: crate::scene::Ends::Clamped,
-        };
         for grading in [1.0, 3.0] {
-            let settings = MeshSettings {
-                nx: 10,
-                ny: 3,
-                element: ElementKind::Q4Sri,
-                model: Model::Half,
-                grading,
-                hourglass: 0.05,
-                distortion: 0.0,
-            };
-            let mesh = PlateMesh::new(&plate, &settings);
+            let mesh = crate::mesh::test_plate_mesh(10, 3, grading);
             let f = SelectiveQ4::new(&mesh.mesh, 0.2).unwrap();
             let elastic = Elastic::new(207e9, 0.3);
             let density = 7850.0;
-            let mass = lumped_masses(&f, mesh.mesh.n_nodes(), density);
-            let inverse_mass: Vec<f64> = (0..2 * mass.len())
-                .map(|d| {
-                    if mesh.fixed_dofs[d] {
-                        0.0
-                    } else {
-                        1.0 / mass[d / 2]
-                    }
-                })
-                .collect();
+            let model = PlateModel::new(
+                SelectiveQ4::new(&mesh.mesh, 0.2).unwrap(),
+                elastic,
+                &mesh,
+                density,
+            );
+            let inverse_mass = model.inverse_mass;
             // Dense operator, column by column.
             let n = inverse_mass.len();
             let kernel = LinearKernel::new(&f, &elastic, &mesh.mesh);

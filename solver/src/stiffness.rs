@@ -93,26 +93,9 @@ mod tests {
     use super::*;
     use crate::element::{FullQ4, OnePointQ4, SelectiveQ4};
     use crate::integrator::PlateModel;
-    use crate::mesh::PlateMesh;
-    use crate::scene::{ElementKind, MeshSettings, Model, Plate};
 
     fn compare<F: Formulation>(make: impl Fn(&Mesh) -> F) {
-        let plate = Plate {
-            length: 0.2,
-            width: 0.2,
-            thickness: 0.02,
-            ends: crate::scene::Ends::Clamped,
-        };
-        let settings = MeshSettings {
-            nx: 12,
-            ny: 4,
-            element: ElementKind::Q4Sri,
-            model: Model::Half,
-            grading: 3.0,
-            hourglass: 0.05,
-            distortion: 0.0,
-        };
-        let mesh = PlateMesh::new(&plate, &settings);
+        let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);
         let elastic = Elastic::new(207e9, 0.3);
         let mut generic = PlateModel::new(make(&mesh.mesh), elastic, &mesh, 7850.0);
         let mut linear = PlateModel::new(make(&mesh.mesh), elastic, &mesh, 7850.0)
