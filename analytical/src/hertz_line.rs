@@ -36,7 +36,9 @@ mod tests {
         let p = paper_max_force_per_width(e, nu, r, l);
         let h = 1e-6 * p;
         let slope = (paper_alpha(p + h, e, nu, r, l) - paper_alpha(p - h, e, nu, r, l)) / (2.0 * h);
-        assert!(slope.abs() < 1e-6 * compliance(e, nu), "{slope}");
+        // Measured 6.9e-11 of the compliance (central-difference truncation and round-off);
+        // 1e-9 is ~10x that, so a P* that is not the stationary point of eq. (4) shows.
+        assert!(slope.abs() < 1e-9 * compliance(e, nu), "{slope}");
         assert!(paper_alpha(0.5 * p, e, nu, r, l) < paper_alpha(p, e, nu, r, l));
     }
 }

@@ -137,13 +137,16 @@ mod tests {
             .iter()
             .zip([4.730040745, 7.853204624, 10.99560784, 14.13716549])
         {
+            // The table gives 10 significant digits (rounding up to 5e-9); measured 2.0e-9.
             assert!((a - b).abs() < 1e-8, "{a} vs {b}");
         }
         // Normalisation of this mode form: integral of phi^2 over [0, 1] is 1.
         for &root in &clamped_roots(30) {
             let n = 4000;
             let s = simpson_weighted_sum(n, |xi| clamped_mode(root, xi).powi(2)) / (3.0 * n as f64);
-            assert!((s - 1.0).abs() < 1e-6, "{root}: {s}");
+            // Measured up to 2.1e-13 (Simpson on smooth modes, round-off growing with the
+            // root); 2e-12 is ~10x. A mode missing its normalisation is off by O(1).
+            assert!((s - 1.0).abs() < 2e-12, "{root}: {s}");
         }
     }
 
@@ -152,7 +155,8 @@ mod tests {
         let beam = ClampedBeam::new(0.8, 0.2, 0.02, 207e9, 0.3).unwrap();
         let b = ModalBeam::new(&beam, 7850.0, 40).unwrap();
         let r = b.series_static_midspan(1e4) / b.static_midspan(1e4);
-        assert!((r - 1.0).abs() < 1e-3, "{r}");
+        // Truncation of the series after 40 modes: measured -9.9e-6; 1e-4 is ~10x.
+        assert!((r - 1.0).abs() < 1e-4, "{r}");
         assert!(ModalBeam::new(&beam, 7850.0, 0).is_err());
         assert!(ModalBeam::new(&beam, -1.0, 40).is_err());
     }

@@ -117,6 +117,8 @@ mod tests {
             p_wave_speed(207e9, 0.3, 7850.0),
             s_wave_speed(207e9, 0.3, 7850.0),
         );
+        // The references are rounded to 1 m/s (computed 5957.96 and 3184.66); a (1 - 2 nu)
+        // slipped to (1 - nu) moves c_P by ~1000 m/s.
         assert!((cp - 5958.0).abs() < 1.0, "{cp}");
         assert!((cs - 3185.0).abs() < 1.0, "{cs}");
         assert!((cp / cs - (2.0 * 0.7 / 0.4f64).sqrt()).abs() < 1e-12);
