@@ -210,7 +210,7 @@ impl ConstitutiveModel for VonMises {
     /// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
     /// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
     /// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly.
-    #[inline]
+    #[inline(always)]
     fn update(&self, strain: &Strain, state: &mut PlasticState) -> PointResponse {
         let mu = self.elastic.mu;
         let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
