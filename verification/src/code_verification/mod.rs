@@ -3,6 +3,7 @@
 //! update against a fixed linear spring. Each returns metrics for the checks and a small
 //! history ("orders") for the report's order plots.
 
+pub mod bar_wave;
 pub mod driver;
 pub mod element_eigen;
 pub mod macneal_harder;
@@ -20,7 +21,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 7] = [
+pub const NAMES: [&str; 8] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -28,6 +29,7 @@ pub const NAMES: [&str; 7] = [
     "rigid-target",
     "plastic-strain-path",
     "element-eigenvalues",
+    "plastic-bar-wave",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -40,6 +42,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "rigid-target" => rigid_target::rigid_target(p),
         "plastic-strain-path" => plastic_path::plastic_strain_path(p),
         "element-eigenvalues" => element_eigen::element_eigenvalues(p),
+        "plastic-bar-wave" => bar_wave::plastic_bar_wave(p),
         _ => return None,
     })
 }
@@ -52,6 +55,33 @@ pub(crate) fn param(p: &BTreeMap<String, Value>, k: &str, default: f64) -> Resul
             .as_f64()
             .ok_or_else(|| format!("param {k}: {v} is not a number")),
     }
+}
+
+/// The elastic-plastic material of the plasticity builtins (steel with linear hardening by
+/// default), SI units.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PlasticMaterial {
+    /// Pa
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    /// kg/m^3
+    pub density: f64,
+    /// Pa
+    pub yield_stress: f64,
+    /// Tangent modulus after yield in uniaxial stress, Pa
+    pub tangent_modulus: f64,
+}
+
+/// The [`PlasticMaterial`] parameters (or their defaults: 200 GPa, 0.3, 7850 kg/m^3,
+/// 250 MPa, 20 GPa).
+pub(crate) fn plastic_material(p: &BTreeMap<String, Value>) -> Result<PlasticMaterial, String> {
+    Ok(PlasticMaterial {
+        youngs_modulus: param(p, "youngs_modulus", 200e9)?,
+        poisson_ratio: param(p, "poisson_ratio", 0.3)?,
+        density: param(p, "density", 7850.0)?,
+        yield_stress: param(p, "yield_stress", 250e6)?,
+        tangent_modulus: param(p, "tangent_modulus", 20e9)?,
+    })
 }
 
 /// A list of positive integers parameter (or its default).

@@ -36,7 +36,7 @@ use serde_json::Value;
 use super::driver::mapped_mesh;
 use super::orders::{largest_step, pair_orders};
 use super::space_time::element;
-use super::{param, param_levels};
+use super::{param, param_levels, plastic_material};
 use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -237,12 +237,13 @@ fn loading_slope(rows: &[[f64; 6]], ey: f64) -> f64 {
 }
 
 pub fn plastic_strain_path(p: &Params) -> Result<RunData, String> {
+    let mat = plastic_material(p)?;
     let mut path = Path {
-        youngs_modulus: param(p, "youngs_modulus", 200e9)?,
-        poisson_ratio: param(p, "poisson_ratio", 0.3)?,
-        yield_stress: param(p, "yield_stress", 250e6)?,
-        tangent_modulus: param(p, "tangent_modulus", 20e9)?,
-        density: param(p, "density", 7850.0)?,
+        youngs_modulus: mat.youngs_modulus,
+        poisson_ratio: mat.poisson_ratio,
+        yield_stress: mat.yield_stress,
+        tangent_modulus: mat.tangent_modulus,
+        density: mat.density,
         eps_max: 0.0,
         period: param(p, "period", 2.0e-5)?,
         model: (0.0, 0.0),
