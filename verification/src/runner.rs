@@ -5,6 +5,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
+use std::sync::OnceLock;
 
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -155,17 +156,50 @@ fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
     }
 }
 
-/// Runs the selected cases. Errors: cases that do not load or do not lint.
+/// Runs the selected cases, announcing each as it finishes with its checks' verdicts, then
+/// the total. Errors: cases that do not load or do not lint.
 pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
+    let started = std::time::Instant::now();
     let loaded = load(repo)?;
     let plan = plan(&loaded, opts)?;
     let all: Vec<usize> = (0..plan.jobs.len()).collect();
-    let finished = execute(&plan, &all, opts.jobs, opts.progress).map_err(|e| vec![e])?;
+    let judge = Judge {
+        repo,
+        filter: &opts.filter,
+    };
+    let (finished, judged) =
+        run_jobs(&plan, &all, opts.jobs, opts.progress, Some(&judge)).map_err(|e| vec![e])?;
     let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
     for (i, r) in finished {
         slots[i] = Some(r);
     }
-    Ok(assemble(repo, &plan, slots, &opts.filter))
+    let outcome = assemble_judged(repo, &plan, slots, &opts.filter, judged);
+    eprintln!(
+        "{}",
+        total_line(&outcome.matrix, started.elapsed().as_secs_f64())
+    );
+    Ok(outcome)
+}
+
+/// The one-line total: `verify: 2 cases, 5 checks: 4 OK, 1 FAIL* (exit 0, 3.2 s)`.
+pub fn total_line(m: &Matrix, seconds: f64) -> String {
+    let t = m.tally();
+    let n_checks = t.ok + t.known_fail + t.fail + t.xpass + t.skip;
+    format!(
+        "verify: {} case{}, {n_checks} check{}: {} (exit {}, {seconds:.1} s)",
+        m.cases.len(),
+        if m.cases.len() == 1 { "" } else { "s" },
+        if n_checks == 1 { "" } else { "s" },
+        t.short(),
+        t.exit_status()
+    )
+}
+
+/// What judges a case as soon as its runs are done: where its references live and which of
+/// its checks to evaluate.
+pub struct Judge<'a> {
+    pub repo: &'a Repo,
+    pub filter: &'a Option<String>,
 }
 
 /// The repository's cases: those that load and lint clean, and the broken ones (each will be
@@ -265,27 +299,39 @@ pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<Stri
 }
 
 /// Runs the jobs `which` on `threads` threads, largest first; each result is returned with
-/// its index, whatever the thread that ran it.
+/// its index, whatever the thread that ran it. Each case whose runs are all among `which`
+/// is announced as it finishes (without verdicts: a shard's cases are judged at the merge).
 pub fn execute(
     plan: &Plan,
     which: &[usize],
     threads: usize,
     progress: bool,
 ) -> Result<Vec<(usize, JobResult)>, String> {
+    run_jobs(plan, which, threads, progress, None).map(|(finished, _)| finished)
+}
+
+/// [`execute`], and with a `judge` each case's row is made as soon as its last run has
+/// finished, announced with its verdicts and returned (per case of the plan) for
+/// [`assemble_judged`].
+fn run_jobs(
+    plan: &Plan,
+    which: &[usize],
+    threads: usize,
+    progress: bool,
+    judge: Option<&Judge>,
+) -> Result<(Vec<(usize, JobResult)>, Vec<Option<CaseResult>>), String> {
     let jobs = &plan.jobs;
     let mut order = which.to_vec();
     order.sort_by(|&a, &b| jobs[b].cost().total_cmp(&jobs[a].cost()).then(a.cmp(&b)));
-    let bar = if progress {
+    let bar = progress.then(|| {
         let b = ProgressBar::new(order.len() as u64);
         b.set_style(
             ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs {msg}")
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> "),
         );
-        Some(b)
-    } else {
-        None
-    };
+        b
+    });
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.max(1))
         .build()
@@ -303,24 +349,47 @@ pub fn execute(
             .collect(),
         jobs.len(),
     );
-    let finished: Vec<(usize, JobResult)> = pool.install(|| {
-        order
-            .par_iter()
-            .map(|&i| {
-                let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| jobs[i].run()))
-                    .unwrap_or_else(|p| Err(format!("the run panicked: {}", panic_text(&*p))));
-                case_progress.run_done(i, bar.as_ref());
-                if let Some(b) = &bar {
-                    b.inc(1);
-                }
-                (i, r)
-            })
-            .collect()
+    let slots: Vec<OnceLock<JobResult>> = jobs.iter().map(|_| OnceLock::new()).collect();
+    let judged: Vec<OnceLock<CaseResult>> = plan.cases.iter().map(|_| OnceLock::new()).collect();
+    // A finished case: judged (its row kept) and announced above the bar.
+    let announce = |c: usize| {
+        let row = judge.map(|j| {
+            let (results, setup_error) = case_runs(&plan.case_jobs[c], |i| slots[i].get().cloned());
+            case_result(j.repo, plan.cases[c], &results, setup_error, j.filter)
+        });
+        let line = case_progress.line(c, row.as_ref().map(|r| Tally::of(&r.checks)).as_ref());
+        if let Some(r) = row {
+            let _ = judged[c].set(r);
+        }
+        match &bar {
+            Some(b) => b.println(line),
+            None => eprintln!("{line}"),
+        }
+    };
+    case_progress.idle().into_iter().for_each(announce);
+    pool.install(|| {
+        order.par_iter().for_each(|&i| {
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| jobs[i].run()))
+                .unwrap_or_else(|p| Err(format!("the run panicked: {}", panic_text(&*p))));
+            let _ = slots[i].set(r);
+            case_progress.run_done(i).into_iter().for_each(announce);
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+        })
     });
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    Ok(finished)
+    let finished = slots
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, s)| s.into_inner().map(|r| (i, r)))
+        .collect();
+    Ok((
+        finished,
+        judged.into_iter().map(OnceLock::into_inner).collect(),
+    ))
 }
 
 /// The text of a panic's payload (a `&str` or `String`; otherwise "no message").
@@ -340,28 +409,28 @@ pub fn assemble(
     slots: Vec<Option<JobResult>>,
     filter: &Option<String>,
 ) -> Outcome {
+    let none = plan.cases.iter().map(|_| None).collect();
+    assemble_judged(repo, plan, slots, filter, none)
+}
+
+/// [`assemble`], taking the rows of the cases already judged (`judged[c]` for
+/// `plan.cases[c]`) as they are.
+fn assemble_judged(
+    repo: &Repo,
+    plan: &Plan,
+    slots: Vec<Option<JobResult>>,
+    filter: &Option<String>,
+    judged: Vec<Option<CaseResult>>,
+) -> Outcome {
     let mut matrix = Matrix {
         counts: Counts::default(),
         cases: Vec::new(),
     };
     let mut data = BTreeMap::new();
-    for (case, jobs_of) in plan.cases.iter().zip(&plan.case_jobs) {
-        let mut results: BTreeMap<String, JobResult> = BTreeMap::new();
-        let mut setup_error = None;
-        for (name, idx) in jobs_of {
-            match idx {
-                Ok(i) => {
-                    results.insert(
-                        name.clone(),
-                        slots[*i].clone().unwrap_or_else(|| Err("not run".into())),
-                    );
-                }
-                Err(e) => setup_error = Some(e.clone()),
-            }
-        }
-        matrix
-            .cases
-            .push(case_result(repo, case, &results, setup_error, filter));
+    for ((case, jobs_of), row) in plan.cases.iter().zip(&plan.case_jobs).zip(judged) {
+        let (results, setup_error) = case_runs(jobs_of, |i| slots[i].clone());
+        let row = row.unwrap_or_else(|| case_result(repo, case, &results, setup_error, filter));
+        matrix.cases.push(row);
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
     matrix
@@ -372,6 +441,28 @@ pub fn assemble(
         .sort_by(|a, b| (&a.suite, &a.case).cmp(&(&b.suite, &b.case)));
     matrix.counts = Counts::from_tally(&matrix.tally());
     Outcome { matrix, data }
+}
+
+/// One case's runs by scene name (`result(i)`: job i's result, None when it did not run),
+/// and why its jobs could not be made, if so.
+fn case_runs(
+    jobs_of: &BTreeMap<String, Result<usize, String>>,
+    result: impl Fn(usize) -> Option<JobResult>,
+) -> (BTreeMap<String, JobResult>, Option<String>) {
+    let mut results = BTreeMap::new();
+    let mut setup_error = None;
+    for (name, idx) in jobs_of {
+        match idx {
+            Ok(i) => {
+                results.insert(
+                    name.clone(),
+                    result(*i).unwrap_or_else(|| Err("not run".into())),
+                );
+            }
+            Err(e) => setup_error = Some(e.clone()),
+        }
+    }
+    (results, setup_error)
 }
 
 /// A broken case's row: one FAIL check `case-loads` carrying why (file:line:col).

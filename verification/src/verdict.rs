@@ -92,6 +92,21 @@ impl Tally {
     pub fn exit_status(&self) -> u8 {
         u8::from(self.unexpected() > 0)
     }
+    /// The verdicts that occur, OK always first: "4 OK", "3 OK, 1 FAIL*, 1 FAIL", "0 OK, 2 SKIP".
+    pub fn short(&self) -> String {
+        let mut parts = vec![format!("{} OK", self.ok)];
+        for (n, v) in [
+            (self.known_fail, Verdict::KnownFail),
+            (self.fail, Verdict::Fail),
+            (self.xpass, Verdict::UnexpectedPass),
+            (self.skip, Verdict::Skip),
+        ] {
+            if n > 0 {
+                parts.push(format!("{n} {}", v.label()));
+            }
+        }
+        parts.join(", ")
+    }
     /// One line: "170 OK, 6 known FAIL, 0 unexpected FAIL, 0 XPASS, 0 SKIP".
     pub fn line(&self) -> String {
         format!(
@@ -122,6 +137,8 @@ mod tests {
             t.add(v);
         }
         assert_eq!(t.exit_status(), 0, "known failures alone: exit 0");
+        assert_eq!(t.short(), "1 OK, 2 FAIL*, 1 SKIP");
+        assert_eq!(Tally::default().short(), "0 OK");
         assert_eq!(
             t.line(),
             "1 OK, 2 known FAIL, 0 unexpected FAIL, 0 XPASS, 1 SKIP"

@@ -54,7 +54,10 @@ fn a_changed_scene_is_reported_check_by_check_against_the_baseline() {
     let main = root.join("out-main");
     let text = verify(&root, &main, &[]);
     // Each case is announced as it finishes (issue 13, "say what is happening").
-    assert!(text.contains("finished suite/case (1 run, "), "{text}");
+    assert!(
+        text.contains("finished suite/case: 2 OK (1 run, "),
+        "{text}"
+    );
     let same = root.join("out-same");
     let text = verify(&root, &same, &["--baseline", main.to_str().unwrap()]);
     assert!(text.contains("2 unchanged, 0 moved within 10 % of their tolerance, 0 moved more, 0 changed status; 0 run histories moved"), "{text}");

@@ -6,6 +6,8 @@
 //!   run (issue 13); 2 on bad usage.
 //!
 //! The matrix's total line counts the known failures apart from the unexpected ones.
+//! While it works, verify prints each case as it finishes with its checks' verdicts and run
+//! time, then a one-line total (issue 13, "say what is happening").
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -133,6 +135,10 @@ fn a_broken_case_is_a_fail_row_and_the_other_suites_run() {
     );
     let results = std::fs::read_to_string(root.join("out/results.json")).unwrap();
     assert!(results.contains("\"case-loads\""), "{results}");
+    assert!(
+        stderr.contains("verify: 2 cases, 2 checks: 1 OK, 1 FAIL (exit 1, "),
+        "the total counts the broken case's FAIL row: {stderr}"
+    );
     let _ = std::fs::remove_dir_all(&root);
 }
 
@@ -140,4 +146,31 @@ fn a_broken_case_is_a_fail_row_and_the_other_suites_run() {
 fn bad_usage_exits_2() {
     let (code, _, stderr) = verify(PASSES, &["--no-such-flag"]);
     assert_eq!(code, 2, "{stderr}");
+}
+
+#[test]
+fn each_case_is_announced_as_it_finishes_with_its_verdicts_then_a_total() {
+    let root = scratch(&format!("{PASSES}{}", known(FAILS)));
+    // A second case in another suite whose one check fails (a new failure).
+    let other = root.join("verification/cases/other/case");
+    std::fs::create_dir_all(&other).unwrap();
+    let yaml = std::fs::read_to_string(root.join("verification/cases/suite/case/case.yaml"))
+        .unwrap()
+        .replace("id: c1", "id: c2")
+        .replace("REQ-1", "REQ-2");
+    let yaml = format!("{}{FAILS}", &yaml[..yaml.find("checks:").unwrap() + 7]);
+    std::fs::write(other.join("case.yaml"), yaml).unwrap();
+    let (code, stdout, stderr) = verify_in(&root, &[]);
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    for line in [
+        "finished suite/case: 1 OK, 1 FAIL* (1 run, ",
+        "finished other/case: 0 OK, 1 FAIL (1 run, ",
+        "verify: 2 cases, 3 checks: 1 OK, 1 FAIL*, 1 FAIL (exit 1, ",
+    ] {
+        assert!(stderr.contains(line), "expected {line:?} in: {stderr}");
+    }
+    // The total comes last, after every case's line.
+    let total = stderr.find("verify: 2 cases").unwrap();
+    assert!(stderr.rfind("finished ").unwrap() < total, "{stderr}");
+    let _ = std::fs::remove_dir_all(&root);
 }
