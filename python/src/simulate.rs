@@ -80,7 +80,12 @@ pub fn simulate<'py>(
 fn run(scene: &Scene, out: Option<&Path>) -> impact_solver::Result<Outcome> {
     match out {
         Some(dir) => {
-            output::simulate_scene_to_dir_with(scene, dir, &Default::default(), &mut |_| {})
+            // Run.history is returned: hold it in memory as well as writing history.csv.
+            let options = output::RunOptions {
+                keep_history: true,
+                ..Default::default()
+            };
+            output::simulate_scene_to_dir_with(scene, dir, &options, &mut |_| {})
         }
         None => impact_solver::simulate(scene, &mut impact_solver::Quiet),
     }

@@ -16,7 +16,8 @@ pub const BYTES_PER_ELEMENT_ONE_POINT: f64 = 450.0;
 /// Resident bytes of a run before any mesh (the 20 x 4 runs above: 6.0 MB).
 pub const BYTES_BASE: f64 = 8.0e6;
 
-/// Bytes per history value held in memory: an f64 in a vector that doubles as it grows.
+/// Bytes per history value held in memory (when it is: not for `impact simulate --out`, which
+/// streams the rows to `history.csv`): an f64 in a vector that doubles as it grows.
 pub const BYTES_PER_HISTORY_VALUE: f64 = 16.0;
 
 /// Steps beyond which a run is announced as long (~10^7: minutes to hours at the measured
@@ -32,9 +33,12 @@ pub struct Estimate {
     pub dt: f64,
     /// Time steps to the scene's end (to `time.limit` for `after_contact`).
     pub steps: f64,
-    /// History rows held in memory.
+    /// History rows of the run.
     pub history_rows: f64,
     pub history_columns: usize,
+    /// Whether the rows are held in memory (the library's runs) or streamed to
+    /// `history.csv` as they come (`impact simulate`: [`Estimate::streamed`]).
+    pub history_in_memory: bool,
     /// Peak resident memory, bytes.
     pub bytes: f64,
 }
@@ -87,13 +91,27 @@ impl Estimate {
             steps,
             history_rows,
             history_columns,
+            history_in_memory: true,
             bytes,
         }
     }
 
-    /// Bytes of the history held in memory.
+    /// The same run with its history streamed to a file: the rows cost no memory.
+    pub fn streamed(self) -> Estimate {
+        Estimate {
+            bytes: self.bytes - self.history_bytes(),
+            history_in_memory: false,
+            ..self
+        }
+    }
+
+    /// Bytes of the history held in memory (0 when it is streamed).
     pub fn history_bytes(&self) -> f64 {
-        self.history_rows * self.history_columns as f64 * BYTES_PER_HISTORY_VALUE
+        if self.history_in_memory {
+            self.history_rows * self.history_columns as f64 * BYTES_PER_HISTORY_VALUE
+        } else {
+            0.0
+        }
     }
 
     /// What to change in the scene to make it cheaper, for messages.
@@ -108,12 +126,17 @@ impl Estimate {
     /// One line: elements, steps, history, memory.
     pub fn describe(&self) -> String {
         format!(
-            "{} elements, about {} steps of {:.2e} s, {} history rows x {} columns, about {} of memory",
+            "{} elements, about {} steps of {:.2e} s, {} history rows x {} columns{}, about {} of memory",
             count(self.elements),
             count(self.steps),
             self.dt,
             count(self.history_rows),
             self.history_columns,
+            if self.history_in_memory {
+                ""
+            } else {
+                " (streamed to disk)"
+            },
             bytes(self.bytes)
         )
     }

@@ -2,18 +2,23 @@
 //! and the contact law, eqs. (19)-(21), following the solution procedure of section 3.5.
 //! See `ALGORITHM.md` section 6 for the exact order of operations.
 
+use std::result::Result as StdResult;
+
 use crate::assembly::Assembly;
-use crate::contact::{solve_contact_force, LineContactLaw};
+use crate::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
 use crate::element::{element_response, gather, lumped_masses, ElementEnergy, Formulation};
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
+use crate::history::{
+    locate_probes, steps_to, HistorySink, Probe, Recorder, RunTotals, Sample, Schedule, StopReason,
+};
 use crate::impactor::RigidImpactor;
 use crate::load::PrescribedLoad;
 use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::{Mesh, PlateMesh};
-use crate::scene::{DtChoice, End, Scene};
+use crate::scene::{DtChoice, End, Impactor, Scene};
 use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
@@ -177,64 +182,6 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     }
 }
 
-/// A probe: the integration point nearest a named point, in the element containing it.
-#[derive(Debug, Clone)]
-pub struct Probe {
-    pub name: String,
-    pub element: usize,
-    pub point: usize,
-}
-
-/// Sampled histories: one row per output time, columns named with their units.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct History {
-    pub columns: Vec<String>,
-    /// Row-major values, `columns.len()` per row.
-    pub values: Vec<f64>,
-}
-
-impl History {
-    pub fn n_rows(&self) -> usize {
-        if self.columns.is_empty() {
-            0
-        } else {
-            self.values.len() / self.columns.len()
-        }
-    }
-
-    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
-        let c = self.columns.iter().position(|n| n == name)?;
-        Some(
-            self.values
-                .iter()
-                .skip(c)
-                .step_by(self.columns.len())
-                .copied()
-                .collect(),
-        )
-    }
-
-    /// Trapezoidal integral over time of `f(value)` of a column, over the rows up to `until`
-    /// (s) (e.g. the momentum deficit of a wave front). `None` without that column.
-    pub fn time_integral(&self, column: &str, until: f64, f: impl Fn(f64) -> f64) -> Option<f64> {
-        let t = self.column("time_s")?;
-        let v = self.column(column)?;
-        let mut integral = 0.0;
-        for k in 1..t.len() {
-            if t[k] > until {
-                break;
-            }
-            integral += 0.5 * (f(v[k - 1]) + f(v[k])) * (t[k] - t[k - 1]);
-        }
-        Some(integral)
-    }
-
-    pub fn row(&self, r: usize) -> &[f64] {
-        let n = self.columns.len();
-        &self.values[r * n..(r + 1) * n]
-    }
-}
-
 /// One frame of field output.
 #[derive(Debug, Clone)]
 pub struct FieldFrame {
@@ -247,35 +194,6 @@ pub struct FieldFrame {
     pub stress: Vec<Stress>,
     pub von_mises: Vec<f64>,
     pub eqps: Vec<f64>,
-}
-
-/// What stopped the run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StopReason {
-    EndTime,
-    AfterContact,
-    TimeLimit,
-}
-
-/// Scalars gathered over every step.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunTotals {
-    pub impulse: f64,
-    pub peak_force: f64,
-    pub max_downward_mid: f64,
-    pub max_downward_bottom: f64,
-    pub contact_intervals: Vec<[f64; 2]>,
-    pub final_impactor_velocity: Option<f64>,
-    pub max_von_mises: Vec<(String, f64)>,
-    pub max_balance_error: f64,
-    pub dt: f64,
-    pub dt_critical: f64,
-    pub n_steps: u64,
-    pub final_time: f64,
-    pub stop: StopReason,
-    pub initial_energy: Energies,
-    pub final_energy: Energies,
 }
 
 /// Receives field frames and progress while a run goes on.
@@ -298,50 +216,52 @@ pub trait Observer {
 pub struct Quiet;
 impl Observer for Quiet {}
 
-/// Steps needed to reach time `t` with step `dt` (times within 1e-9 dt count as reached).
-fn steps_to(t: f64, dt: f64) -> u64 {
-    (t / dt - 1e-9).ceil().max(0.0) as u64
-}
-
-/// A schedule of output steps every `every` s (every step when `None`).
-struct Schedule {
-    every: Option<f64>,
-    next: u64,
-    k: u64,
-}
-
-impl Schedule {
-    fn new(every: Option<f64>) -> Schedule {
-        Schedule {
-            every,
-            next: 0,
-            k: 0,
-        }
-    }
-    /// Whether step `n` is due; advances past it.
-    fn due(&mut self, n: u64, dt: f64) -> bool {
-        let Some(every) = self.every else { return true };
-        if n < self.next {
-            return false;
-        }
-        while self.next <= n {
-            self.k += 1;
-            self.next = steps_to(self.k as f64 * every, dt);
-        }
-        true
-    }
-}
-
-/// Runs the time loop of a validated scene on a built model.
+/// Runs the time loop of a validated scene on a built model, sending the history rows to
+/// `sink`: the steps of `ALGORITHM.md` section 6 ([`Stepper`]) written down by the
+/// [`Recorder`] (section 8).
 pub fn run<F: Formulation, M: ConstitutiveModel>(
     scene: &Scene,
     mesh: &PlateMesh,
     model: &mut PlateModel<F, M>,
     observer: &mut dyn Observer,
-) -> Result<(History, RunTotals)> {
+    sink: &mut dyn HistorySink,
+) -> Result<RunTotals> {
     let dt_critical = critical_step(scene, mesh, model);
-    let dt = match scene.time.dt {
-        DtChoice::Cfl(c) => c * dt_critical,
+    let dt = chosen_step(scene, dt_critical)?;
+    let probes = locate_probes(scene, mesh, &model.formulation)?;
+    let clock = Clock::new(scene, dt);
+    let mut watch = Watch::new(scene, observer, &clock);
+    let mut recorder = Recorder::new(scene, probes, sink, dt, dt_critical)?;
+    let mut stepper = Stepper::new(scene, mesh, model, dt, dt_critical);
+    let mut n: u64 = 0;
+    loop {
+        let t = n as f64 * dt;
+        let applied = stepper.applied(t);
+        recorder.contact(t, applied);
+        let stop = clock.stop(n, t, dt, recorder.separated_at());
+        // 1-3: internal forces, accelerations, velocities at n + 1/2; 4: energies at t_n.
+        let energies = stepper.half_step(n, applied);
+        let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
+        stepper.check_inversion(n, t, stop.is_some())?;
+        let at = stepper.sample(t, applied, &energies, imbalance);
+        recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.stress(p))?;
+        watch.step(n, t, stop.is_some(), &stepper)?;
+        if let Some(reason) = stop {
+            let balance = stepper.balance;
+            return recorder.finish(n, reason, &at, stepper.initial_energy, &balance);
+        }
+        // u_{n+1}, then 5: the contact force at n + 1 and the impactor.
+        let next_force = stepper.advance(n, t, applied, balance_error)?;
+        recorder.impulse(applied, next_force, dt);
+        n += 1;
+    }
+}
+
+/// The time step of the scene's `time.dt` choice, s: a fraction of `dt_critical`, or a fixed
+/// step refused above it (unless `time.allow_unstable_dt`).
+fn chosen_step(scene: &Scene, dt_critical: f64) -> Result<f64> {
+    match scene.time.dt {
+        DtChoice::Cfl(c) => Ok(c * dt_critical),
         DtChoice::Fixed(d) => {
             if d > dt_critical && !scene.time.allow_unstable_dt {
                 return Err(Error::invalid(
@@ -351,109 +271,222 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                     format!("must not exceed the stable estimate {dt_critical:.6e} s of this mesh (or set time.allow_unstable_dt: true)"),
                 ));
             }
-            d
+            Ok(d)
         }
-    };
-    let probes = locate_probes(scene, mesh, &model.formulation)?;
-    let s = mesh.symmetry_factor;
-    let impactor_spec = scene.impactor();
-    let law = impactor_spec.map(|i| LineContactLaw::new(i, &scene.material, scene.plate.width));
-    let mut impactor = impactor_spec.map(|i| RigidImpactor::new(i.mass, i.velocity));
-    let datum = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
-    let force_node = impactor_spec.map_or(mesh.top, |i| mesh.mid_span_node(i.force_node));
-    let energy_consistent = force_node == datum;
-    let prescribed = PrescribedLoad::from_scene(&scene.load, &scene.plate, mesh);
-    let (end_time, after_contact) = match scene.time.end {
-        End::At(t) => (t, None),
-        End::AfterContact { after, limit } => (limit, Some(after)),
-    };
-    let last_step = steps_to(end_time, dt);
+    }
+}
 
-    let columns = history_columns(scene, &probes);
-    let mut history = History {
-        values: Vec::with_capacity(columns.len() * 1024),
-        columns,
-    };
-    let ndof = model.inverse_mass.len();
-    let mut u = vec![0.0; ndof];
-    let mut v = vec![0.0; ndof]; // v_{n-1/2}
-    let mut f_int = vec![0.0; ndof];
-    let mut force = 0.0; // F_n, whole plate
-    let mut alpha = 0.0;
-    let mut balance = BalanceMonitor::default();
-    let mut external_work = 0.0;
-    let mut plastic_work = 0.0;
-    let mut rows = Schedule::new(scene.output.every);
-    let mut frames = Schedule::new(if observer.wants_fields() {
-        scene.output.fields_every
-    } else {
-        None
-    });
-    let wants_fields = observer.wants_fields() && scene.output.fields_every.is_some();
-    let mut totals = RunTotals {
-        impulse: 0.0,
-        peak_force: 0.0,
-        max_downward_mid: 0.0,
-        max_downward_bottom: 0.0,
-        contact_intervals: Vec::new(),
-        final_impactor_velocity: None,
-        max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
-        max_balance_error: 0.0,
-        dt,
-        dt_critical,
-        n_steps: 0,
-        final_time: 0.0,
-        stop: StopReason::EndTime,
-        initial_energy: Energies::default(),
-        final_energy: Energies::default(),
-    };
-    let mut separated_at: Option<f64> = None;
-    let mut in_contact = false;
-    let mut row = Vec::with_capacity(history.columns.len());
-    let progress_every = (last_step / 200).max(1);
+/// When the run ends: at `time.end`, or `after` s after contact ends (at most at `limit`).
+struct Clock {
+    /// s
+    end_time: f64,
+    last_step: u64,
+    /// s after separation (`time.end: {after_contact}`).
+    after_contact: Option<f64>,
+}
 
-    let mut n: u64 = 0;
-    loop {
-        let t = n as f64 * dt;
-        let applied = prescribed.as_ref().map_or(force, |l| l.magnitude_at(t));
-        // Contact intervals: [first t_n with F > 0, first later t_n with F = 0].
-        if applied > 0.0 {
-            if !in_contact {
-                totals.contact_intervals.push([t, t]);
-                in_contact = true;
-            }
-            separated_at = None;
-            totals.peak_force = totals.peak_force.max(applied);
-        } else if in_contact {
-            close_interval(&mut totals.contact_intervals, t);
-            in_contact = false;
-            separated_at = Some(t);
+impl Clock {
+    fn new(scene: &Scene, dt: f64) -> Clock {
+        let (end_time, after_contact) = match scene.time.end {
+            End::At(t) => (t, None),
+            End::AfterContact { after, limit } => (limit, Some(after)),
+        };
+        Clock {
+            end_time,
+            last_step: steps_to(end_time, dt),
+            after_contact,
         }
-        let stop = if n >= last_step {
-            Some(if after_contact.is_some() {
+    }
+
+    /// Whether the run stops after step `n` (at `t`), and why.
+    fn stop(&self, n: u64, t: f64, dt: f64, separated_at: Option<f64>) -> Option<StopReason> {
+        if n >= self.last_step {
+            return Some(if self.after_contact.is_some() {
                 StopReason::TimeLimit
             } else {
                 StopReason::EndTime
-            })
-        } else {
-            match (after_contact, separated_at) {
-                (Some(after), Some(since)) if t - since >= after - 1e-9 * dt => {
-                    Some(StopReason::AfterContact)
-                }
-                _ => None,
+            });
+        }
+        match (self.after_contact, separated_at) {
+            (Some(after), Some(since)) if t - since >= after - 1e-9 * dt => {
+                Some(StopReason::AfterContact)
             }
-        };
+            _ => None,
+        }
+    }
+}
 
-        // 1-3: internal forces, accelerations, velocities at n + 1/2.
-        let element_energy = model.internal_forces(&u, &mut f_int);
-        plastic_work += s * element_energy.plastic_work;
-        match &prescribed {
-            Some(load) => load.subtract_from(applied, &mut f_int),
-            None => f_int[2 * force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
+/// What the observer is given: field frames, progress, and the chance to stop the run.
+struct Watch<'o> {
+    observer: &'o mut dyn Observer,
+    frames: Schedule,
+    wants_fields: bool,
+    progress_every: u64,
+    /// s
+    end_time: f64,
+}
+
+impl<'o> Watch<'o> {
+    fn new(scene: &Scene, observer: &'o mut dyn Observer, clock: &Clock) -> Watch<'o> {
+        let wants = observer.wants_fields();
+        Watch {
+            frames: Schedule::new(if wants {
+                scene.output.fields_every
+            } else {
+                None
+            }),
+            wants_fields: wants && scene.output.fields_every.is_some(),
+            progress_every: (clock.last_step / 200).max(1),
+            end_time: clock.end_time,
+            observer,
+        }
+    }
+
+    /// Step `n` at `t` (`last`: the run stops after it): a field frame when one is due,
+    /// progress, and [`Error::Interrupted`] when a stop was requested.
+    fn step<F: Formulation, M: ConstitutiveModel>(
+        &mut self,
+        n: u64,
+        t: f64,
+        last: bool,
+        stepper: &Stepper<F, M>,
+    ) -> Result<()> {
+        if self.wants_fields && (self.frames.due(n, stepper.dt) || last) {
+            let frame = field_frame(stepper.model, &stepper.u, &stepper.v, t);
+            self.observer.fields(frame)?;
+        }
+        if n % self.progress_every == 0 {
+            self.observer.progress(t, self.end_time);
+        }
+        if n % crate::interrupt::POLL_EVERY == 0 && self.observer.stop_requested() {
+            return Err(Error::Interrupted {
+                step: n,
+                time_s: t,
+                cleanup: String::new(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The rigid impactor and its contact law (impact scenes).
+struct Impact<'a> {
+    spec: &'a Impactor,
+    law: LineContactLaw,
+    body: RigidImpactor,
+    /// Indentation `alpha_n = delta_S - delta_C`, m.
+    alpha: f64,
+}
+
+impl Impact<'_> {
+    /// Step 5: the contact force `F_{n+1}` (N) of eq. (21) for the datum's deflection
+    /// `delta_c` (m) at n + 1, and the impactor moved to n + 1 (eqs. 19-20); `force` is `F_n`.
+    fn advance(&mut self, dt: f64, force: f64, delta_c: f64) -> StdResult<f64, BeyondMaximum> {
+        let alpha_free = self.body.displacement_after(dt, force, 0.0) - delta_c;
+        let extra = dt * dt / (6.0 * self.body.mass);
+        let f1 = solve_contact_force(&self.law, extra, alpha_free)?;
+        self.body.advance(dt, force, f1);
+        self.alpha = self.body.displacement - delta_c;
+        Ok(f1)
+    }
+}
+
+/// The state of the plate and the impactor between steps, and the steps of `ALGORITHM.md`
+/// section 6 that advance it.
+struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
+    scene: &'a Scene,
+    mesh: &'a PlateMesh,
+    model: &'a mut PlateModel<F, M>,
+    /// s
+    dt: f64,
+    /// s
+    dt_critical: f64,
+    /// Symmetry factor `s`.
+    s: f64,
+    impact: Option<Impact<'a>>,
+    prescribed: Option<PrescribedLoad>,
+    /// Node whose `u_y` the force acts on.
+    force_node: usize,
+    /// Node the indentation is read from.
+    datum: usize,
+    energy_consistent: bool,
+    /// `u_n`, m.
+    u: Vec<f64>,
+    /// `v_{n-1/2}` before step 3, `v_{n+1/2}` after, m/s.
+    v: Vec<f64>,
+    /// `f_int - f_ext`, N.
+    f_int: Vec<f64>,
+    /// Contact force `F_n` on the whole plate, N (0 under a prescribed load).
+    force: f64,
+    balance: BalanceMonitor,
+    /// J
+    external_work: f64,
+    /// J
+    plastic_work: f64,
+    initial_energy: Energies,
+}
+
+impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
+    fn new(
+        scene: &'a Scene,
+        mesh: &'a PlateMesh,
+        model: &'a mut PlateModel<F, M>,
+        dt: f64,
+        dt_critical: f64,
+    ) -> Self {
+        let spec = scene.impactor();
+        let datum = spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
+        let force_node = spec.map_or(mesh.top, |i| mesh.mid_span_node(i.force_node));
+        let ndof = model.inverse_mass.len();
+        Stepper {
+            scene,
+            mesh,
+            dt,
+            dt_critical,
+            s: mesh.symmetry_factor,
+            impact: spec.map(|i| Impact {
+                spec: i,
+                law: LineContactLaw::new(i, &scene.material, scene.plate.width),
+                body: RigidImpactor::new(i.mass, i.velocity),
+                alpha: 0.0,
+            }),
+            prescribed: PrescribedLoad::from_scene(&scene.load, &scene.plate, mesh),
+            force_node,
+            datum,
+            energy_consistent: force_node == datum,
+            u: vec![0.0; ndof],
+            v: vec![0.0; ndof],
+            f_int: vec![0.0; ndof],
+            model,
+            force: 0.0,
+            balance: BalanceMonitor::default(),
+            external_work: 0.0,
+            plastic_work: 0.0,
+            initial_energy: Energies::default(),
+        }
+    }
+
+    /// The force on the plate at `t_n`: the contact force, or the prescribed load, N.
+    fn applied(&self, t: f64) -> f64 {
+        self.prescribed
+            .as_ref()
+            .map_or(self.force, |l| l.magnitude_at(t))
+    }
+
+    /// Steps 1-3 (internal forces at `u_n`, accelerations, `v_{n+1/2}`); returns the energies
+    /// at `t_n` (section 7).
+    fn half_step(&mut self, n: u64, applied: f64) -> Energies {
+        let (s, dt) = (self.s, self.dt);
+        let element_energy = self.model.internal_forces(&self.u, &mut self.f_int);
+        self.plastic_work += s * element_energy.plastic_work;
+        match &self.prescribed {
+            Some(load) => load.subtract_from(applied, &mut self.f_int),
+            None => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
         }
         let half = if n == 0 { 0.5 } else { 1.0 };
+        let (v, f_int, model) = (&mut self.v, &self.f_int, &*self.model);
         let mut twice_kinetic = 0.0;
-        for d in 0..ndof {
+        for d in 0..v.len() {
             let a = -f_int[d] * model.inverse_mass[d];
             let v_new = v[d] + half * dt * a;
             if n > 0 {
@@ -462,22 +495,31 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             }
             v[d] = v_new;
         }
-
-        // 4: energies and output at t_n.
-        let energies = Energies {
+        Energies {
             plate_kinetic: 0.5 * s * twice_kinetic,
-            impactor_kinetic: impactor.map_or(0.0, |i| i.kinetic_energy()),
+            impactor_kinetic: self
+                .impact
+                .as_ref()
+                .map_or(0.0, |i| i.body.kinetic_energy()),
             strain: s * element_energy.strain,
-            plastic_work,
+            plastic_work: self.plastic_work,
             hourglass: s * element_energy.hourglass,
-            contact: law.map_or(0.0, |l| l.energy(force)),
-            external_work,
-        };
-        let (imbalance, balance_error) = balance.record(&energies);
-        if n == 0 {
-            totals.initial_energy = energies;
+            contact: self
+                .impact
+                .as_ref()
+                .map_or(0.0, |i| i.law.energy(self.force)),
+            external_work: self.external_work,
         }
-        let bound = if energy_consistent && n >= CONSISTENT_GUARD_AFTER_STEPS {
+    }
+
+    /// Step 4's guard: records the energies at `t_n` in the balance and returns the imbalance
+    /// (J) and the running balance error; an error when the run has gone unstable.
+    fn check_balance(&mut self, n: u64, t: f64, energies: &Energies) -> Result<(f64, f64)> {
+        let (imbalance, balance_error) = self.balance.record(energies);
+        if n == 0 {
+            self.initial_energy = *energies;
+        }
+        let bound = if self.energy_consistent && n >= CONSISTENT_GUARD_AFTER_STEPS {
             BLOW_UP_BALANCE_ERROR_CONSISTENT
         } else {
             BLOW_UP_BALANCE_ERROR
@@ -487,131 +529,116 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
                 step: n,
                 time_s: t,
                 what: format!(
-                    "unstable: the energy balance error reached {balance_error:.3e}, above {bound} (energy grows without a source: total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {dt:.6e} s is {:.3} of the stable estimate{}",
-                    energies.total(), totals.initial_energy.total(), external_work, dt / dt_critical,
-                    crate::contact_failure::light_impactor_cause(scene)
+                    "unstable: the energy balance error reached {balance_error:.3e}, above {bound} (energy grows without a source: total energy {:.6e} J from {:.6e} J with {:.6e} J of external work); dt = {:.6e} s is {:.3} of the stable estimate{}",
+                    energies.total(), self.initial_energy.total(), self.external_work, self.dt, self.dt / self.dt_critical,
+                    crate::contact_failure::light_impactor_cause(self.scene)
                 ),
             });
         }
-        if n % INVERSION_CHECK_EVERY == 0 || stop.is_some() {
-            if let Some(e) = mesh.mesh.first_inverted(&u) {
-                let c = mesh.mesh.element_coords(e);
-                return Err(Error::Run {
-                    step: n,
-                    time_s: t,
-                    what: format!(
-                        "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: the displacements are no longer small against the mesh (dt = {dt:.6e} s, {:.3} of the stable estimate)",
-                        0.25 * (c[0][0] + c[1][0] + c[2][0] + c[3][0]),
-                        0.25 * (c[0][1] + c[1][1] + c[2][1] + c[3][1]),
-                        dt / dt_critical
-                    ),
-                });
-            }
-        }
-        let mid_uy = u[2 * mesh.mid + 1];
-        totals.max_downward_mid = totals.max_downward_mid.min(mid_uy);
-        totals.max_downward_bottom = totals.max_downward_bottom.min(u[2 * mesh.bottom + 1]);
-        let want_row = rows.due(n, dt) || stop.is_some();
-        for (p, max) in probes.iter().zip(totals.max_von_mises.iter_mut()) {
-            max.1 = max
-                .1
-                .max(von_mises(&model.point_stress(p.element, p.point, &u)));
-        }
-        if want_row {
-            row.clear();
-            row.push(t);
-            row.push(applied);
-            if let Some(imp) = &impactor {
-                row.extend([alpha, imp.displacement, imp.velocity]);
-            }
-            row.extend([u[2 * mesh.top + 1], mid_uy, u[2 * mesh.bottom + 1]]);
-            for p in &probes {
-                let st = model.point_stress(p.element, p.point, &u);
-                row.extend([st[0], st[1], st[3], st[2], von_mises(&st)]);
-            }
-            row.extend(energies.as_row());
-            row.push(imbalance); // divided by the run's largest energy at the end
-            history.values.extend_from_slice(&row);
-        }
-        if wants_fields && (frames.due(n, dt) || stop.is_some()) {
-            observer.fields(field_frame(model, &u, &v, t))?;
-        }
-        if n % progress_every == 0 {
-            observer.progress(t, end_time);
-        }
-        if n % crate::interrupt::POLL_EVERY == 0 && observer.stop_requested() {
-            return Err(Error::Interrupted {
-                step: n,
-                time_s: t,
-                cleanup: String::new(),
-            });
-        }
-        if let Some(reason) = stop {
-            totals.stop = reason;
-            totals.n_steps = n;
-            totals.final_time = t;
-            totals.final_energy = energies;
-            totals.final_impactor_velocity = impactor.map(|i| i.velocity);
-            totals.max_balance_error = balance.max_error();
-            if in_contact {
-                close_interval(&mut totals.contact_intervals, t);
-            }
-            break;
-        }
+        Ok((imbalance, balance_error))
+    }
 
-        // Displacements at n + 1.
-        let projection_before = prescribed.as_ref().map_or(0.0, |l| l.projection(&u));
-        for d in 0..ndof {
-            u[d] += dt * v[d];
+    /// Every [`INVERSION_CHECK_EVERY`] steps and at the `last`: an error naming the first
+    /// inverted element.
+    fn check_inversion(&self, n: u64, t: f64, last: bool) -> Result<()> {
+        if n % INVERSION_CHECK_EVERY != 0 && !last {
+            return Ok(());
         }
-        // 5: contact force at n + 1 (eq. 21) and the impactor (eqs. 19-20).
-        let next_force = match (&mut impactor, &law, impactor_spec) {
-            (Some(imp), Some(law), Some(spec)) => {
-                let delta_c = -u[2 * datum + 1];
-                let alpha_free = imp.displacement_after(dt, force, 0.0) - delta_c;
-                let extra = dt * dt / (6.0 * imp.mass);
-                let f1 = solve_contact_force(law, extra, alpha_free).map_err(|beyond| {
-                    let failure = crate::contact_failure::Failure {
-                        scene,
-                        impactor: spec,
-                        law,
-                        beyond,
-                        balance_error,
-                        dt,
-                        dt_critical,
-                    };
-                    Error::Run {
+        let Some(e) = self.mesh.mesh.first_inverted(&self.u) else {
+            return Ok(());
+        };
+        let c = self.mesh.mesh.element_coords(e);
+        Err(Error::Run {
+            step: n,
+            time_s: t,
+            what: format!(
+                "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: the displacements are no longer small against the mesh (dt = {:.6e} s, {:.3} of the stable estimate)",
+                0.25 * (c[0][0] + c[1][0] + c[2][0] + c[3][0]),
+                0.25 * (c[0][1] + c[1][1] + c[2][1] + c[3][1]),
+                self.dt,
+                self.dt / self.dt_critical
+            ),
+        })
+    }
+
+    /// What the recorder writes down at `t_n`.
+    fn sample<'e>(
+        &self,
+        t: f64,
+        applied: f64,
+        energies: &'e Energies,
+        imbalance: f64,
+    ) -> Sample<'e> {
+        let uy = |node: usize| self.u[2 * node + 1];
+        Sample {
+            t,
+            force: applied,
+            impactor: self
+                .impact
+                .as_ref()
+                .map(|i| [i.alpha, i.body.displacement, i.body.velocity]),
+            uy: [uy(self.mesh.top), uy(self.mesh.mid), uy(self.mesh.bottom)],
+            energies,
+            imbalance,
+        }
+    }
+
+    /// A probe's stress at `u_n`, Pa.
+    fn stress(&self, p: &Probe) -> Stress {
+        self.model.point_stress(p.element, p.point, &self.u)
+    }
+
+    /// `u_{n+1} = u_n + dt v_{n+1/2}`, then step 5 (impact: the contact force at n + 1 and the
+    /// impactor) and the external work of a prescribed load. Returns the force at `t_{n+1}`,
+    /// N (contact, or the prescribed load's magnitude).
+    fn advance(&mut self, n: u64, t: f64, applied: f64, balance_error: f64) -> Result<f64> {
+        let dt = self.dt;
+        let projection_before = self
+            .prescribed
+            .as_ref()
+            .map_or(0.0, |l| l.projection(&self.u));
+        for (u, v) in self.u.iter_mut().zip(&self.v) {
+            *u += dt * v;
+        }
+        let next_force = match &mut self.impact {
+            Some(impact) => {
+                let delta_c = -self.u[2 * self.datum + 1];
+                impact
+                    .advance(dt, self.force, delta_c)
+                    .map_err(|beyond| Error::Run {
                         step: n + 1,
                         time_s: t + dt,
-                        what: failure.explain(),
-                    }
-                })?;
-                imp.advance(dt, force, f1);
-                alpha = imp.displacement - delta_c;
-                f1
+                        what: crate::contact_failure::Failure {
+                            scene: self.scene,
+                            impactor: impact.spec,
+                            law: &impact.law,
+                            beyond,
+                            balance_error,
+                            dt,
+                            dt_critical: self.dt_critical,
+                        }
+                        .explain(),
+                    })?
             }
             // t_{n+1} = (n + 1) dt exactly as the next step will compute it (t + dt can round
             // differently and misplace the end of the pulse).
-            _ => prescribed
+            None => self
+                .prescribed
                 .as_ref()
                 .map_or(0.0, |l| l.magnitude_at((n + 1) as f64 * dt)),
         };
-        if let Some(load) = &prescribed {
-            external_work += load.work(applied, next_force, projection_before, load.projection(&u));
+        if let Some(load) = &self.prescribed {
+            let projection_after = load.projection(&self.u);
+            self.external_work +=
+                load.work(applied, next_force, projection_before, projection_after);
         }
-        totals.impulse += 0.5 * (applied + next_force) * dt;
-        force = if prescribed.is_some() {
+        self.force = if self.prescribed.is_some() {
             0.0
         } else {
             next_force
         };
-        n += 1;
+        Ok(next_force)
     }
-    let width = history.columns.len();
-    for r in history.values.chunks_exact_mut(width) {
-        r[width - 1] = balance.ratio(r[width - 1]);
-    }
-    Ok((history, totals))
 }
 
 /// The stable step of `scene.time.dt.estimate`, s. The global estimate includes the contact
@@ -654,74 +681,5 @@ fn field_frame<F: Formulation, M: ConstitutiveModel>(
         von_mises: averages.iter().map(|a| von_mises(&a.0)).collect(),
         eqps: averages.iter().map(|a| a.1).collect(),
         stress: averages.into_iter().map(|a| a.0).collect(),
-    }
-}
-
-fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
-    let mut c: Vec<String> = vec!["time_s".into(), "contact_force_N".into()];
-    if scene.impactor().is_some() {
-        c.extend(
-            [
-                "indentation_m",
-                "impactor_displacement_m",
-                "impactor_velocity_mps",
-            ]
-            .map(String::from),
-        );
-    }
-    c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
-    for p in probes {
-        for q in ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"] {
-            c.push(format!("{}_{q}", p.name));
-        }
-    }
-    c.extend(Energies::COLUMNS.map(String::from));
-    c.push("energy_balance_error".into());
-    c
-}
-
-/// Finds each probe's element and nearest integration point.
-fn locate_probes<F: Formulation>(
-    scene: &Scene,
-    mesh: &PlateMesh,
-    formulation: &F,
-) -> Result<Vec<Probe>> {
-    scene
-        .output
-        .probes
-        .iter()
-        .map(|(name, at)| {
-            let point = mesh.fold(*at);
-            let element = mesh.element_containing(point).ok_or_else(|| {
-                Error::invalid(
-                    crate::error::SourceLocation::file(&scene.source),
-                    format!("output.probes.{name}"),
-                    format!("({}, {})", at[0], at[1]),
-                    "must lie inside the plate",
-                )
-            })?;
-            let coords = mesh.mesh.element_coords(element);
-            let distance = |xi: &[f64; 2]| {
-                let n = crate::element::shape(*xi);
-                let x: f64 = (0..4).map(|a| n[a] * coords[a][0]).sum();
-                let y: f64 = (0..4).map(|a| n[a] * coords[a][1]).sum();
-                (x - point[0]).powi(2) + (y - point[1]).powi(2)
-            };
-            let xis = formulation.point_xi();
-            let nearest = (0..xis.len())
-                .min_by(|&a, &b| distance(&xis[a]).total_cmp(&distance(&xis[b])))
-                .unwrap_or(0);
-            Ok(Probe {
-                name: name.clone(),
-                element,
-                point: nearest,
-            })
-        })
-        .collect()
-}
-
-fn close_interval(intervals: &mut [[f64; 2]], t: f64) {
-    if let Some(last) = intervals.last_mut() {
-        last[1] = t;
     }
 }

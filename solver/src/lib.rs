@@ -4,7 +4,8 @@
 //!
 //! Read `ALGORITHM.md` (next to this crate's `Cargo.toml`) for the exact contract. Modules:
 //! [`scene`] (input), [`mesh`], [`element`], [`material`], [`contact`], [`impactor`],
-//! [`model`] (element x material x kernel), [`integrator`] (the time loop), [`energy`],
+//! [`model`] (element x material x kernel), [`integrator`] (the time loop), [`history`] (what
+//! the loop records), [`energy`],
 //! [`summary`], [`output`] (files).
 
 pub mod assembly;
@@ -15,6 +16,7 @@ pub mod elastic_screen;
 pub mod element;
 pub mod energy;
 pub mod error;
+pub mod history;
 pub mod impactor;
 pub mod integrator;
 pub mod interrupt;
@@ -35,7 +37,8 @@ pub mod yaml_field;
 use std::time::Instant;
 
 pub use error::{Error, Result};
-pub use integrator::{History, Observer, Quiet};
+pub use history::{History, HistorySink};
+pub use integrator::{Observer, Quiet};
 pub use scene::Scene;
 pub use summary::Summary;
 
@@ -48,6 +51,8 @@ use mesh::PlateMesh;
 #[derive(Debug, Clone)]
 pub struct Outcome {
     pub summary: Summary,
+    /// Every row, or only the column names when the rows were streamed to a file
+    /// ([`output::RunOptions::keep_history`]).
     pub history: History,
     pub mesh: PlateMesh,
 }
@@ -65,7 +70,30 @@ pub fn simulate_within(
     observer: &mut dyn Observer,
     max_memory: Option<f64>,
 ) -> Result<Outcome> {
-    budget::check(scene, &budget::Estimate::of(scene), max_memory)?;
+    let mut history = History::default();
+    let (summary, mesh) = simulate_into(scene, observer, max_memory, &mut history)?;
+    Ok(Outcome {
+        summary,
+        history,
+        mesh,
+    })
+}
+
+/// [`simulate_within`] sending the history rows to `sink` as they are produced (e.g. a file,
+/// so that memory does not grow with the run's length) instead of holding them.
+pub fn simulate_into(
+    scene: &Scene,
+    observer: &mut dyn Observer,
+    max_memory: Option<f64>,
+    sink: &mut dyn HistorySink,
+) -> Result<(Summary, PlateMesh)> {
+    let estimate = budget::Estimate::of(scene);
+    let estimate = if sink.holds_rows() {
+        estimate
+    } else {
+        estimate.streamed()
+    };
+    budget::check(scene, &estimate, max_memory)?;
     let started = Instant::now();
     let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
     let run = Run {
@@ -73,13 +101,10 @@ pub fn simulate_within(
         mesh: &mesh,
         started,
         observer,
+        sink,
     };
-    let (summary, history) = model::build(scene, &mesh, model::Kernel::Solver, run)??;
-    Ok(Outcome {
-        summary,
-        history,
-        mesh,
-    })
+    let summary = model::build(scene, &mesh, model::Kernel::Solver, run)??;
+    Ok((summary, mesh))
 }
 
 /// The time loop of a run, on whatever model the factory built.
@@ -88,22 +113,22 @@ struct Run<'a> {
     mesh: &'a PlateMesh,
     started: Instant,
     observer: &'a mut dyn Observer,
+    sink: &'a mut dyn HistorySink,
 }
 
 impl model::UseModel for Run<'_> {
-    type Output = Result<(Summary, History)>;
+    type Output = Result<Summary>;
 
     fn use_model<F: Formulation, M: ConstitutiveModel>(
         self,
         mut model: PlateModel<F, M>,
     ) -> Self::Output {
         let setup_done = Instant::now();
-        let (history, totals) = integrator::run(self.scene, self.mesh, &mut model, self.observer)?;
+        let totals = integrator::run(self.scene, self.mesh, &mut model, self.observer, self.sink)?;
         let timing = summary::Timing {
             setup_s: (setup_done - self.started).as_secs_f64(),
             loop_s: setup_done.elapsed().as_secs_f64(),
         };
-        let summary = Summary::new(self.scene, self.mesh, &totals, timing);
-        Ok((summary, history))
+        Ok(Summary::new(self.scene, self.mesh, &totals, timing))
     }
 }

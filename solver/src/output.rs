@@ -3,17 +3,19 @@
 //! failed run leaves nothing half-written behind.
 
 use std::fs;
-use std::io::{BufWriter, Write};
+use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
 use crate::budget::{Estimate, MANY_STEPS};
+use crate::energy::BalanceMonitor;
 use crate::error::{Error, Result};
-use crate::integrator::{FieldFrame, History, Observer};
+use crate::history::{History, HistorySink};
+use crate::integrator::{FieldFrame, Observer};
 use crate::mesh::Mesh;
 use crate::out_dir::{check_out_dir, clean_stale_staging, in_user_terms, staging_dir};
 use crate::progress::{Progress, ProgressMode};
 use crate::scene::Scene;
-use crate::{simulate_within, Outcome};
+use crate::{simulate_into, simulate_within, Outcome};
 
 pub use crate::out_dir::OUTPUT_FILES;
 
@@ -24,17 +26,101 @@ pub fn write_history(history: &History, path: &Path) -> Result<()> {
     let mut w = BufWriter::new(fs::File::create(path).map_err(io)?);
     writeln!(w, "{}", history.columns.join(",")).map_err(io)?;
     for r in 0..history.n_rows() {
-        let mut first = true;
-        for x in history.row(r) {
-            if !first {
-                w.write_all(b",").map_err(io)?;
-            }
-            write!(w, "{x}").map_err(io)?;
-            first = false;
-        }
-        w.write_all(b"\n").map_err(io)?;
+        write_row(&mut w, history.row(r)).map_err(io)?;
     }
     w.flush().map_err(io)
+}
+
+/// One CSV row of [`write_history`]'s format.
+fn write_row(w: &mut impl Write, row: &[f64]) -> std::io::Result<()> {
+    let mut first = true;
+    for x in row {
+        if !first {
+            w.write_all(b",")?;
+        }
+        write!(w, "{x}")?;
+        first = false;
+    }
+    w.write_all(b"\n")
+}
+
+/// The history streamed to disk as the run produces it, so that memory does not grow with
+/// the run's length: the same bytes as [`write_history`] of the in-memory history. A row's
+/// last value (the energy balance error) is known only when the run ends (it is divided by
+/// the run's largest energy), so the rows go as raw `f64`s into a spill file beside the CSV
+/// (`<name>.rows`) as they come, and [`HistorySink::finish`] writes the CSV from it, one row
+/// at a time, and removes it.
+pub struct HistoryFile {
+    path: PathBuf,
+    spill_path: PathBuf,
+    spill: Option<BufWriter<fs::File>>,
+    /// The columns, named with their units.
+    pub columns: Vec<String>,
+    /// Rows written so far.
+    pub rows: u64,
+}
+
+impl HistoryFile {
+    /// A sink writing the CSV to `path` (nothing is created before the run begins).
+    pub fn new(path: &Path) -> HistoryFile {
+        let mut spill = path.as_os_str().to_owned();
+        spill.push(".rows");
+        HistoryFile {
+            path: path.to_path_buf(),
+            spill_path: spill.into(),
+            spill: None,
+            columns: Vec::new(),
+            rows: 0,
+        }
+    }
+
+    fn write_csv(&mut self, balance: &BalanceMonitor) -> std::io::Result<()> {
+        let width = self.columns.len();
+        let mut spill = BufReader::new(fs::File::open(&self.spill_path)?);
+        let mut w = BufWriter::new(fs::File::create(&self.path)?);
+        writeln!(w, "{}", self.columns.join(","))?;
+        let mut bytes = vec![0u8; 8 * width];
+        let mut row = vec![0.0; width];
+        for _ in 0..self.rows {
+            spill.read_exact(&mut bytes)?;
+            for (x, b) in row.iter_mut().zip(bytes.chunks_exact(8)) {
+                *x = f64::from_le_bytes(b.try_into().expect("8 bytes"));
+            }
+            row[width - 1] = balance.ratio(row[width - 1]);
+            write_row(&mut w, &row)?;
+        }
+        w.flush()
+    }
+}
+
+impl HistorySink for HistoryFile {
+    fn begin(&mut self, columns: &[String]) -> Result<()> {
+        self.columns = columns.to_vec();
+        let file = fs::File::create(&self.spill_path).map_err(|e| Error::write(&self.path, e))?;
+        self.spill = Some(BufWriter::new(file));
+        Ok(())
+    }
+    fn row(&mut self, row: &[f64]) -> Result<()> {
+        let spill = self.spill.as_mut().expect("begin() comes first");
+        for x in row {
+            spill
+                .write_all(&x.to_le_bytes())
+                .map_err(|e| Error::write(&self.path, e))?;
+        }
+        self.rows += 1;
+        Ok(())
+    }
+    fn finish(&mut self, balance: &BalanceMonitor) -> Result<()> {
+        if let Some(mut spill) = self.spill.take() {
+            spill.flush().map_err(|e| Error::write(&self.path, e))?;
+        }
+        self.write_csv(balance)
+            .map_err(|e| Error::write(&self.path, e))?;
+        fs::remove_file(&self.spill_path).map_err(|e| Error::write(&self.spill_path, e))
+    }
+    fn holds_rows(&self) -> bool {
+        false
+    }
 }
 
 pub fn write_json<T: serde::Serialize>(value: &T, path: &Path) -> Result<()> {
@@ -80,6 +166,10 @@ pub struct RunOptions {
     pub max_memory: Option<f64>,
     /// Write into a non-empty folder that holds no earlier run.
     pub force: bool,
+    /// Also hold the history in memory ([`Outcome::history`]; the Python package's `Run.history`).
+    /// Without it the history is streamed to `history.csv` as the run goes (memory does not
+    /// grow with `time.end`) and `Outcome::history` holds the column names only.
+    pub keep_history: bool,
 }
 
 impl Default for RunOptions {
@@ -88,6 +178,7 @@ impl Default for RunOptions {
             progress: ProgressMode::Off,
             max_memory: None,
             force: false,
+            keep_history: false,
         }
     }
 }
@@ -126,7 +217,11 @@ pub fn simulate_scene_to_dir_with(
     say: &mut dyn FnMut(String),
 ) -> Result<Outcome> {
     check_out_dir(out_dir, options.force)?;
-    let estimate = Estimate::of(scene);
+    let estimate = if options.keep_history {
+        Estimate::of(scene)
+    } else {
+        Estimate::of(scene).streamed()
+    };
     crate::budget::check(scene, &estimate, options.max_memory)?;
     say(format!("simulate: {}", estimate.describe()));
     if estimate.steps > MANY_STEPS {
@@ -151,7 +246,7 @@ pub fn simulate_scene_to_dir_with(
         scene,
         &staging,
         Progress::start(options.progress, &what),
-        options.max_memory,
+        options,
     )
     .and_then(|outcome| {
         publish(&staging, out_dir)?;
@@ -177,7 +272,7 @@ fn run_into(
     scene: &Scene,
     staging: &Path,
     progress: Progress,
-    max_memory: Option<f64>,
+    options: &RunOptions,
 ) -> Result<Outcome> {
     let _ = fs::remove_dir_all(staging);
     fs::create_dir_all(staging).map_err(|e| Error::write(staging, e))?;
@@ -192,10 +287,27 @@ fn run_into(
         frames: Vec::new(),
         progress,
     };
-    let outcome = simulate_within(scene, &mut observer, max_memory);
+    let history_path = staging.join("history.csv");
+    let outcome = if options.keep_history {
+        simulate_within(scene, &mut observer, options.max_memory).and_then(|outcome| {
+            write_history(&outcome.history, &history_path)?;
+            Ok(outcome)
+        })
+    } else {
+        let mut file = HistoryFile::new(&history_path);
+        simulate_into(scene, &mut observer, options.max_memory, &mut file).map(|(summary, mesh)| {
+            Outcome {
+                summary,
+                history: History {
+                    columns: file.columns,
+                    values: Vec::new(),
+                },
+                mesh,
+            }
+        })
+    };
     observer.progress.finish();
     let outcome = outcome?;
-    write_history(&outcome.history, &staging.join("history.csv"))?;
     write_json(&outcome.summary, &staging.join("summary.json"))?;
     if !observer.frames.is_empty() {
         write_pvd(&observer.frames, &staging.join("fields.pvd"))?;

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::energy::Energies;
-use crate::integrator::{RunTotals, StopReason};
+use crate::history::{RunTotals, StopReason};
 use crate::mesh::PlateMesh;
 use crate::scene::{ContactLawChoice, ElementKind, Load, MidSpanNode, Model, Scene};
 

@@ -154,7 +154,7 @@ fn after_contact_stops_once_the_impactor_has_left() {
     let end = s.contact_duration;
     assert!(matches!(
         s.stop_reason,
-        impact_solver::integrator::StopReason::AfterContact
+        impact_solver::history::StopReason::AfterContact
     ));
     assert!(
         s.final_time >= end + 2e-4 - 1e-9 && s.final_time < end + 2e-4 + s.dt,

@@ -151,6 +151,8 @@ fn main() -> ExitCode {
                 },
                 max_memory,
                 force,
+                // The history streams to history.csv: memory does not grow with time.end.
+                keep_history: false,
             };
             simulate(&scene, &out, &options, threads, quiet)
         }
