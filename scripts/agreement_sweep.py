@@ -24,24 +24,17 @@ import yaml
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
+sys.path.insert(1, str(HERE / "tests"))
 from indep_fe.scene import with_dotted  # noqa: E402
+from helpers import BASE as TEST_SCENE, PLASTIC  # noqa: E402
 from indep_fe.compare import column_diffs, interval_steps, read_history, read_summary, summary_diffs  # noqa: E402
 
 RUST = ROOT / "target" / "release" / "impact"
 PY = [str(ROOT / ".venv" / "bin" / "python"), "-m", "indep_fe", "simulate"]
 
-BASE = {
-    "plate": {"length": 0.200, "width": 0.200, "thickness": 0.020},
-    "material": {"density": 7850.0, "youngs_modulus": 207.0e9, "poisson_ratio": 0.3},
-    "mesh": {"nx": 20, "ny": 4, "element": "q4-sri", "model": "half"},
-    "load": {"impactor": {"mass": 18.0, "velocity": 10.0, "nose_radius": 0.010,
-                          "youngs_modulus": 207.0e9, "poisson_ratio": 0.3,
-                          "contact_law": {"paper": {"length_unit": 1.0}},
-                          "indentation_datum": "mid-plane"}},
-    "time": {"end": 1.0e-3, "dt": {"fixed": 5.0e-7}},
-    "output": {"every": 1.0e-5, "probes": {"A": {"x": 0.100, "y": 0.0}}},
-}
-PLASTIC = {"yield_stress": 250.0e6, "hardening": {"linear": 1.5e9}}
+# The Python tests' small scene (scripts/tests/helpers.py: the README's example plate and
+# impactor, elastic) on a 20 x 4 mesh with a fixed dt.
+BASE = with_dotted(TEST_SCENE, {"mesh.nx": 20, "time.end": 1.0e-3, "time.dt": {"fixed": 5.0e-7}})
 TABLE = {"yield_stress": 250.0e6, "hardening": {"table": [[0.0, 250.0e6], [0.002, 262.0e6],
                                                           [0.05, 320.0e6]]}}
 LAWS = {"paper1m": {"paper": {"length_unit": 1.0}}, "papermm": {"paper": {"length_unit": 1.0e-3}},

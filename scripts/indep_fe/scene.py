@@ -142,21 +142,50 @@ def _one_of(d, where: str) -> tuple[str, object]:
     return k, v
 
 
-def parse_scene(data: dict) -> Scene:
-    if not isinstance(data, dict):
-        raise SceneError("scene must be a YAML mapping")
-    _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
-                    "scene")
-
+def _parse_plate(data: dict) -> Plate:
+    """plate: dimensions and end supports."""
     p = _req(data, "plate", "scene")
     _refuse_unknown(p, {"length", "width", "thickness", "ends"}, "plate")
     ends = str(p.get("ends", "clamped"))
     if ends not in ENDS:
         raise SceneError(f"plate.ends must be {' | '.join(ENDS)}, got {ends}")
-    plate = Plate(_pos(_req(p, "length", "plate"), "plate.length"),
+    return Plate(_pos(_req(p, "length", "plate"), "plate.length"),
                   _pos(_req(p, "width", "plate"), "plate.width"),
                   _pos(_req(p, "thickness", "plate"), "plate.thickness"), ends)
 
+
+def _parse_hardening(pl: dict, plast: Plasticity, E: float, sy0: float) -> None:
+    """material.plasticity.hardening into `plast`: linear (tangent modulus) or a table."""
+    hard = _req(pl, "hardening", "material.plasticity")
+    kind, val = _one_of(hard, "material.plasticity.hardening")
+    if kind == "linear":
+        et = _pos(val, "material.plasticity.hardening.linear", allow_zero=True)
+        if et >= E:
+            raise SceneError("hardening.linear (tangent modulus E_t) must be < youngs_modulus")
+        plast.linear_tangent = et
+    elif kind == "table":
+        rows = [(float(a), float(b)) for a, b in val]
+        if not rows:
+            raise SceneError("hardening.table is empty")
+        # the table must start at (0, yield_stress) (to 1e-9 relative): an error, never patched
+        if rows[0][0] != 0.0 or abs(rows[0][1] - sy0) > 1e-9 * sy0:
+            raise SceneError(f"hardening.table[0] = {list(rows[0])} must be "
+                             f"[0, yield_stress] = [0, {sy0:g}]")
+        if not all(math.isfinite(a) and math.isfinite(b) for a, b in rows):
+            raise SceneError("hardening.table: entries must be finite numbers")
+        ks = [r[0] for r in rows]
+        if any(b <= a for a, b in zip(ks, ks[1:])):
+            raise SceneError("hardening.table: plastic strains must increase strictly")
+        ss = [r[1] for r in rows]
+        if any(b < a for a, b in zip(ss, ss[1:])):
+            raise SceneError("hardening.table: flow stresses must not decrease")
+        plast.table = rows
+    else:
+        raise SceneError(f"unknown hardening '{kind}' (linear | table)")
+
+
+def _parse_material(data: dict) -> Material:
+    """material: elastic constants and the optional plasticity."""
     m = _req(data, "material", "scene")
     _refuse_unknown(m, {"density", "youngs_modulus", "poisson_ratio", "plasticity"}, "material")
     nu = float(_req(m, "poisson_ratio", "material"))
@@ -169,34 +198,12 @@ def parse_scene(data: dict) -> Scene:
         _refuse_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
         sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
         plast = Plasticity(yield_stress=sy0)
-        hard = _req(pl, "hardening", "material.plasticity")
-        kind, val = _one_of(hard, "material.plasticity.hardening")
-        if kind == "linear":
-            et = _pos(val, "material.plasticity.hardening.linear", allow_zero=True)
-            if et >= E:
-                raise SceneError("hardening.linear (tangent modulus E_t) must be < youngs_modulus")
-            plast.linear_tangent = et
-        elif kind == "table":
-            rows = [(float(a), float(b)) for a, b in val]
-            if not rows:
-                raise SceneError("hardening.table is empty")
-            # the table must start at (0, yield_stress) (to 1e-9 relative): an error, never patched
-            if rows[0][0] != 0.0 or abs(rows[0][1] - sy0) > 1e-9 * sy0:
-                raise SceneError(f"hardening.table[0] = {list(rows[0])} must be "
-                                 f"[0, yield_stress] = [0, {sy0:g}]")
-            if not all(math.isfinite(a) and math.isfinite(b) for a, b in rows):
-                raise SceneError("hardening.table: entries must be finite numbers")
-            ks = [r[0] for r in rows]
-            if any(b <= a for a, b in zip(ks, ks[1:])):
-                raise SceneError("hardening.table: plastic strains must increase strictly")
-            ss = [r[1] for r in rows]
-            if any(b < a for a, b in zip(ss, ss[1:])):
-                raise SceneError("hardening.table: flow stresses must not decrease")
-            plast.table = rows
-        else:
-            raise SceneError(f"unknown hardening '{kind}' (linear | table)")
-    material = Material(_pos(_req(m, "density", "material"), "material.density"), E, nu, plast)
+        _parse_hardening(pl, plast, E, sy0)
+    return Material(_pos(_req(m, "density", "material"), "material.density"), E, nu, plast)
 
+
+def _parse_mesh(data: dict) -> MeshSpec:
+    """mesh: size, element, model, grading, hourglass."""
     me = _req(data, "mesh", "scene")
     _refuse_unknown(me, {"nx", "ny", "element", "model", "grading", "hourglass", "distortion"},
                     "mesh")
@@ -217,7 +224,11 @@ def parse_scene(data: dict) -> Scene:
         raise SceneError("mesh.grading (largest/smallest element length) must be >= 1")
     if mesh.hourglass < 0:
         raise SceneError("mesh.hourglass must be >= 0")
+    return mesh
 
+
+def _parse_load(data: dict) -> tuple[Impactor | None, Pulse | None]:
+    """load: exactly one of an impactor or a pulse."""
     load = _req(data, "load", "scene")
     _refuse_unknown(load, {"impactor", "pulse", "traction"}, "load")
     _refuse_unsupported(load, {"traction"}, "load")
@@ -253,7 +264,11 @@ def parse_scene(data: dict) -> Scene:
         _refuse_unknown(pu, {"force", "duration"}, "load.pulse")
         pulse = Pulse(float(_req(pu, "force", "load.pulse")),
                       _pos(_req(pu, "duration", "load.pulse"), "load.pulse.duration"))
+    return impactor, pulse
 
+
+def _parse_time(data: dict) -> TimeSpec:
+    """time: the end (a time or after_contact), the step, the limit."""
     t = _req(data, "time", "scene")
     _refuse_unknown(t, {"end", "dt", "limit", "allow_unstable_dt"}, "time")
     ts = TimeSpec(limit=_pos(t.get("limit", 0.05), "time.limit"),
@@ -273,7 +288,11 @@ def parse_scene(data: dict) -> Scene:
         ts.fixed_dt = _pos(val, "time.dt.fixed")
     else:
         raise SceneError("time.dt must be {cfl: c} or {fixed: dt}")
+    return ts
 
+
+def _parse_output(data: dict, plate: Plate) -> Output:
+    """output: history spacing and probes (inside the plate)."""
     o = data.get("output") or {}
     _refuse_unknown(o, {"every", "probes", "fields"}, "output")
     for name, pr in (o.get("probes") or {}).items():
@@ -285,8 +304,20 @@ def parse_scene(data: dict) -> Scene:
         if not (0.0 <= pr.x <= plate.length and 0.0 <= pr.y <= plate.thickness):
             raise SceneError(f"output.probes.{pr.name} = ({pr.x}, {pr.y}) must lie in the plate")
     every = o.get("every")      # omitted: a history row every step
-    output = Output(None if every is None else _pos(every, "output.every"), probes)
+    return Output(None if every is None else _pos(every, "output.every"), probes)
 
+
+def parse_scene(data: dict) -> Scene:
+    if not isinstance(data, dict):
+        raise SceneError("scene must be a YAML mapping")
+    _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
+                    "scene")
+    plate = _parse_plate(data)
+    material = _parse_material(data)
+    mesh = _parse_mesh(data)
+    impactor, pulse = _parse_load(data)
+    ts = _parse_time(data)
+    output = _parse_output(data, plate)
     return Scene(plate, material, mesh, impactor, pulse, ts, output)
 
 

@@ -573,15 +573,25 @@ def acc_text(a: dict) -> str:
             f"all Table 1 worst {pct(a['all_worst'])} ({'pass' if a['all_pass'] else 'FAIL'})")
 
 
-def report_text(result: dict, hist_plots: list[str]) -> str:
-    b, c = result["best"], result["confirm"]
-    p = b["params"]
-    res = c["res"]
-    acc = c["acceptance"]
-    tol = result["supported_tolerances"]
-    L: list[str] = []
-    A = L.append
+# Section 7's columns: the Table 1 residuals shown for the members of the beam family.
+FAMILY_KEYS = ["impulse:elastic", "impactor_final_velocity:elastic", "max_plate_displacement:elastic",
+            "impulse:plastic", "impactor_final_velocity:plastic", "max_plate_displacement:plastic",
+            "max_effective_stress_point_a:plastic"]
+FAMILY_SHORT = {"impulse:elastic": "I E", "impactor_final_velocity:elastic": "v_f E",
+         "max_plate_displacement:elastic": "disp E", "impulse:plastic": "I EP",
+         "impactor_final_velocity:plastic": "v_f EP", "max_plate_displacement:plastic": "disp EP",
+         "max_effective_stress_point_a:plastic": "stress A EP"}
 
+
+class Page(list):
+    """The lines of a Markdown page; `page(line)` appends one."""
+
+    def __call__(self, line: str) -> None:
+        self.append(line)
+
+
+def _title(A: Page, result: dict) -> None:
+    """The title, the page's provenance line and the quick-mode warning."""
     A("# Reproducing Dokko & Kim (2004)")
     A("")
     A("*A page of the V&V report. Written by `scripts/reconstruction/reconstruct.py`; all numbers below come "
@@ -589,10 +599,18 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "authors' program: matching them is a code-to-literature comparison, not a validation "
       "against experiment.*")
     A("")
+
+
+def _summary(A: Page, result: dict) -> None:
+    """The summary: the chosen set, the targets met, the identity, the search's size."""
+    b = result["best"]
+    c = result["confirm"]
+    p = b["params"]
+    res = c["res"]
+    acc = c["acceptance"]
     if result["quick"]:
         A("> **QUICK MODE** (smoke test, tiny budget): the numbers below are not the reconstruction.")
         A("")
-    # ---------------------------------------------------------------- summary
     fails = [k for k, e in res["t1"].items() if abs(e["rel"]) > (0.05 if k.split(":")[0] in rc.ROBUST else 0.10)]
     A("## Summary")
     A("")
@@ -622,7 +640,9 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       f"cache), {result['timing_s']['total'] / 60:.1f} min wall time on 2 parallel runs.")
     A("")
 
-    # ---------------------------------------------------------------- what is unknown
+
+def _unknowns(A: Page, result: dict) -> None:
+    """Section 1: what the lost figures leave unknown."""
     A("## 1. What had to be reconstructed")
     A("")
     A("Fig. 1 of the paper (plate and impactor data) is lost, with Fig. 4 (mesh, point A) and the "
@@ -640,7 +660,9 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "E W h^3, which the search covers through W and h).")
     A("")
 
-    # ---------------------------------------------------------------- method
+
+def _search_method(A: Page, result: dict) -> None:
+    """Section 2: the coordinates, the objective and the coarse mesh's check."""
     bud = result["budget"]
     A("## 2. How the parameters were found")
     A("")
@@ -722,6 +744,12 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "'fail', the literal pairing failed on the default mesh while the coarse mesh still "
       "runs (section 9).")
     A("")
+
+
+def _search_stages(A: Page, result: dict) -> None:
+    """Section 2, continued: the search's stages and the elastic grid's candidates."""
+    bud = result["budget"]
+    b = result["best"]
     A("**Stages** (all cached, resumable; times are wall-clock with 2 runs in parallel):")
     A("")
     ts = result["timing_s"]
@@ -771,7 +799,12 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "(and with them the point-A stress) decide between the basins.")
     A("")
 
-    # ---------------------------------------------------------------- chosen set
+
+def _chosen_parameters(A: Page, result: dict) -> None:
+    """Section 3: the chosen set against the best set of every reading."""
+    b = result["best"]
+    p = b["params"]
+    res = result["confirm"]["res"]
     A("## 3. The chosen parameters")
     A("")
     pl = result["polish"]
@@ -799,7 +832,11 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       f"{8 * (2 / math.sqrt(3)) * p['sy'] * p['W'] * p['h'] ** 2 / 4 / p['L'] / 1e3:.0f} kN.")
     A("")
 
-    # ---------------------------------------------------------------- Table 1
+
+def _table1(A: Page, result: dict, hist_plots: list[str]) -> None:
+    """Section 4: Table 1 side by side, and which contact duration the paper printed."""
+    c = result["confirm"]
+    res = c["res"]
     A("## 4. Table 1 side by side (default mesh)")
     A("")
     rows = []
@@ -849,7 +886,11 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     if hist_plots:
         A("")
 
-    # ---------------------------------------------------------------- Table 2
+
+def _table2(A: Page, result: dict) -> None:
+    """Section 5: Table 2 side by side."""
+    c = result["confirm"]
+    res = c["res"]
     A("## 5. Table 2 side by side (default mesh, m = 10 kg)")
     A("")
     runs = {(q["table"], q["row"], q["v0"]): q for q in c["runs"]}
@@ -875,7 +916,10 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
     A("![Table 2](table2.svg)")
     A("")
 
-    # ---------------------------------------------------------------- identity
+
+def _identity(A: Page, result: dict) -> None:
+    """Section 6: the impulse-momentum identity."""
+    c = result["confirm"]
     A("## 6. The impulse-momentum identity")
     A("")
     allid = [e["max_impulse_momentum_error"] for e in result["evaluations"]
@@ -889,28 +933,23 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "the same identity to its printed digits; reference-data/paper/PROVENANCE.md.)")
     A("")
 
-    # ---------------------------------------------------------------- non-uniqueness
+
+def _beam_family(A: Page, result: dict) -> None:
+    """Section 7: the beam family and the contrasts off it."""
     fam = result["family"]
     A("## 7. Non-uniqueness: what fits equally well, and what breaks the tie")
     A("")
     A("**The beam family, numerically.** The chosen set moved along (L, W, h) -> "
       "(L s, W / s^3, h s^2) (40 x 8 mesh, objective J as in the search):")
     A("")
-    key_cols = ["impulse:elastic", "impactor_final_velocity:elastic", "max_plate_displacement:elastic",
-                "impulse:plastic", "impactor_final_velocity:plastic", "max_plate_displacement:plastic",
-                "max_effective_stress_point_a:plastic"]
-    short = {"impulse:elastic": "I E", "impactor_final_velocity:elastic": "v_f E",
-             "max_plate_displacement:elastic": "disp E", "impulse:plastic": "I EP",
-             "impactor_final_velocity:plastic": "v_f EP", "max_plate_displacement:plastic": "disp EP",
-             "max_effective_stress_point_a:plastic": "stress A EP"}
     rows = []
     for f in fam["family"]:
         ok = f["J"] < 1e5
         rows.append([f"{f['L'] * 1e3:.0f}", f"{f['W'] * 1e3:.0f}", f"{f['h'] * 1e3:.1f}",
                      f"{f['h'] / f['L']:.3f}", f"{f['J']:.2f}" if ok else "fails"]
-                    + [pct(f["rel"].get(k)) if ok and k in f["rel"] else "-" for k in key_cols]
+                    + [pct(f["rel"].get(k)) if ok and k in f["rel"] else "-" for k in FAMILY_KEYS]
                     + [pct(f["acceptance"].get("t2_worst")) if ok else "-"])
-    A(md_table(["L mm", "W mm", "h mm", "h/L", "J"] + [short[k] for k in key_cols] + ["T2 worst"],
+    A(md_table(["L mm", "W mm", "h mm", "h/L", "J"] + [FAMILY_SHORT[k] for k in FAMILY_KEYS] + ["T2 worst"],
                rows))
     A("")
     A("![family](family.svg)")
@@ -922,9 +961,18 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
         ok = f["J"] < 1e5
         rows.append([f["name"], f"{f['L'] * 1e3:.0f}", f"{f['W'] * 1e3:.0f}", f"{f['h'] * 1e3:.1f}",
                      f"{f['J']:.1f}" if ok else "fails"]
-                    + [pct(f["rel"].get(k)) if ok and k in f["rel"] else "-" for k in key_cols])
-    A(md_table(["change", "L mm", "W mm", "h mm", "J"] + [short[k] for k in key_cols], rows))
+                    + [pct(f["rel"].get(k)) if ok and k in f["rel"] else "-" for k in FAMILY_KEYS])
+    A(md_table(["change", "L mm", "W mm", "h mm", "J"] + [FAMILY_SHORT[k] for k in FAMILY_KEYS], rows))
     A("")
+
+
+def _tie_breakers(A: Page, result: dict) -> None:
+    """Section 7, continued: the re-fits at other lengths and what breaks the tie."""
+    bud, fam = result["budget"], result["family"]
+    c = result["confirm"]
+    p = result["best"]["params"]
+    res = c["res"]
+    acc = c["acceptance"]
     if result["refit_confirm"]:
         A("**Re-fitted at other lengths** (all five unknowns re-optimised at that L, then "
           "confirmed on the default mesh):")
@@ -953,7 +1001,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
                    "bounds the family from above.")
     base_f = min(famok, key=lambda f: abs(f["L"] - p["L"]))
     def dmax(f):
-        return max(abs(f["rel"][k] - base_f["rel"][k]) for k in key_cols[:6]
+        return max(abs(f["rel"][k] - base_f["rel"][k]) for k in FAMILY_KEYS[:6]
                    if k in f["rel"] and k in base_f["rel"])
     step = [f for f in famok if abs(f["L"] - p["L"] * fam["factor"]) < 1e-9]
     offs = [(f["name"], dmax(f)) for f in fam["contrasts"][1:] if f["J"] < 1e5]
@@ -1007,7 +1055,10 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
           "elasto-plastic impulses need early yielding); the hint is recorded, not imposed.")
     A("")
 
-    # ---------------------------------------------------------------- contact law
+
+def _contact_laws(A: Page, result: dict) -> None:
+    """Section 8: the three readings of the contact law on the chosen set."""
+    b = result["best"]
     A("## 8. The contact law: three readings on the chosen set")
     A("")
     A("Everything but the law is the chosen set; default mesh; force on the datum (default "
@@ -1051,7 +1102,13 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "is in section 3.")
     A("")
 
-    # ---------------------------------------------------------------- pairing
+
+def _readings(A: Page, result: dict) -> None:
+    """Section 9: which reading reproduces the paper, and what the literal one costs."""
+    laws = {(r["law"], r["pairing"]): r for r in result["laws"]}
+    b = result["best"]
+    c = result["confirm"]
+    res = c["res"]
     A("## 9. Which reading reproduces the paper, and what it costs")
     A("")
     rows = []
@@ -1091,7 +1148,7 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
         if lv.get("coarse"):
             A("Its residuals on the 40 x 8 mesh, where it runs:")
             A("")
-            L.extend(residual_block(lv["coarse"]))
+            A.extend(residual_block(lv["coarse"]))
             A("")
         A("- **Energy does not balance**: the plate receives f d(u_top) while the contact "
           "spring and the impactor account for f d(u_mid); the through-thickness compression "
@@ -1109,7 +1166,11 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
           "can be made with it, and it cannot be the reproducing reading of a verification suite.")
     A("")
 
-    # ---------------------------------------------------------------- point A
+
+def _out_of_reach(A: Page, result: dict) -> None:
+    """Section 10: what remains out of reach, and why."""
+    res = result["confirm"]["res"]
+    acc = result["confirm"]["acceptance"]
     A("## 10. What remains out of reach, and why")
     A("")
     mst = result.get("mesh_study", [])
@@ -1179,6 +1240,11 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       f"achievable is what the chosen set gives: {acc_text(acc)}.")
     A("")
 
+
+def _point_a_and_pulse(A: Page, result: dict) -> None:
+    """Section 11: point A and the pulse scenes."""
+    c = result["confirm"]
+    p = result["best"]["params"]
     A("## 11. Point A and the pulse scenes")
     A("")
     pa = c["runs"][0]["max_von_mises_Pa"], c["runs"][1]["max_von_mises_Pa"]
@@ -1229,7 +1295,12 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "lost. These scenes are for the pulse suite's code-to-code and invariant checks.")
     A("")
 
-    # ---------------------------------------------------------------- conclusions
+
+def _conclusions(A: Page, result: dict) -> None:
+    """Section 12: the paper's four conclusions, checked one by one."""
+    c = result["confirm"]
+    p = result["best"]["params"]
+    res = c["res"]
     A("## 12. The paper's four conclusions, checked one by one")
     A("")
     e_ = {q: res["t1"][f"{q}:elastic"]["ours"] for q in rc.T1_KEYS}
@@ -1267,7 +1338,12 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "construction; the check above is that the bound is what limits the stress at A.")
     A("")
 
-    # ---------------------------------------------------------------- tolerances
+
+def _tolerances(A: Page, result: dict) -> None:
+    """Section 13: the tolerances the reconstruction supports."""
+    c = result["confirm"]
+    res = c["res"]
+    tol = result["supported_tolerances"]
     A("## 13. Tolerances the reconstruction supports")
     A("")
     A("For the harness (table1, momentum-impulse and pulse suites): the tolerance each "
@@ -1303,7 +1379,10 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "the invariants only.")
     A("")
 
-    # ---------------------------------------------------------------- files
+
+def _files(A: Page, result: dict) -> None:
+    """Section 14: the files beside the page."""
+    p = result["best"]["params"]
     A("## 14. Files")
     A("")
     A(md_table(["file", "content"], [
@@ -1322,4 +1401,27 @@ def report_text(result: dict, hist_plots: list[str]) -> str:
       "scripts/reconstruction/reconstruct.py` (about 15 min on 2 cores; `--quick` for a smoke test under 3 min; "
       "`--report-only` rewrites this page from `search.json`).")
     A("")
-    return "\n".join(L)
+
+
+def report_text(result: dict, hist_plots: list[str]) -> str:
+    """The page `report.md`: its sections in order, from `search.json`'s result."""
+    page = Page()
+    _title(page, result)
+    _summary(page, result)
+    _unknowns(page, result)
+    _search_method(page, result)
+    _search_stages(page, result)
+    _chosen_parameters(page, result)
+    _table1(page, result, hist_plots)
+    _table2(page, result)
+    _identity(page, result)
+    _beam_family(page, result)
+    _tie_breakers(page, result)
+    _contact_laws(page, result)
+    _readings(page, result)
+    _out_of_reach(page, result)
+    _point_a_and_pulse(page, result)
+    _conclusions(page, result)
+    _tolerances(page, result)
+    _files(page, result)
+    return "\n".join(page)

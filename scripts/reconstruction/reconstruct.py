@@ -609,7 +609,8 @@ def git(*a: str) -> str:
         return "unknown"
 
 
-def main() -> int:
+def _arguments() -> argparse.Namespace:
+    """The command line, and the search's budget (full or --quick) as attributes."""
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="smoke test, < 3 min, writes only to --work")
     ap.add_argument("--jobs", type=int, default=2, help="parallel runs (default 2)")
@@ -653,34 +654,28 @@ def main() -> int:
         a.family_L = [0.10, 0.12, 0.14, 0.16, 0.18, 0.19, 0.20, 0.21, 0.22, 0.25, 0.30]
         a.refit_L, a.refit_fev = [0.15], 40
         a.text_fev = 30
+    return a
 
-    import recon_report  # noqa: E402
-    out = Path(a.work) / "reconstruction" if a.quick else Path(a.out)
-    if a.report_only:
-        result = json.loads((out / "search.json").read_text())
-        result["evaluations"] = [expand(e) for e in result["evaluations"]]
-        finish(result, out, recon_report, scenes=not a.no_scenes and not result["quick"])
-        return 0
 
-    S = Search(a)
-    S.log(f"solver {S.binary} sha256 {S.runner.bin_sha[:12]}, {len(S.runner.cache)} cached runs, "
-          f"jobs {a.jobs}, {'QUICK' if a.quick else 'full'} mode")
-    timing = {}
+class _Timed:
+    """Runs a stage, adds its wall time to `timing[name]` and saves the run cache."""
 
-    def timed(name, fn, *args, **kw):
+    def __init__(self, S):
+        self.S, self.timing = S, {}
+
+    def __call__(self, name, fn, *args, **kw):
         t = time.perf_counter()
         r = fn(*args, **kw)
-        timing[name] = timing.get(name, 0.0) + time.perf_counter() - t
-        S.runner.save()
+        self.timing[name] = self.timing.get(name, 0.0) + time.perf_counter() - t
+        self.S.runner.save()
         return r
 
-    mesh = timed("mesh", S.stage_mesh)
-    eg = timed("elastic-grid", S.stage_elastic_grid)
-    pg = timed("plastic-grid", S.stage_plastic_grid, eg)
-    polished = timed("polish", S.stage_polish, pg)
-    # the chosen set: the best polished set (rounded to 3 significant digits) that also runs
-    # on the default mesh
-    confirm, per_law, keep = None, {}, Path(a.work) / "confirm"
+
+def _confirm_polished(S, timed, polished: dict, keep: Path) -> tuple[dict, dict]:
+    """Each polished set, rounded to 3 significant digits, on the default mesh; the
+    chosen set is the best one that also runs there. Returns it and every set by law."""
+    a = S.args
+    confirm, per_law = None, {}
     for key in sorted(polished, key=lambda k: polished[k]["J"]):
         law, pr = key.split("/")
         xr = round_x(polished[key]["x"])
@@ -699,11 +694,12 @@ def main() -> int:
             confirm = c
     if confirm is None:
         sys.exit("reconstruct.py: no polished set runs on the default mesh")
-    law, pr, xb = confirm["law"], confirm["pairing"], confirm["x"]
-    bkey = f"{law}/{pr}"
-    S.log(f"chosen: {bkey} at {fmt_x(xb)}; default-mesh J = {confirm['J']:.2f}")
-    mstudy = timed("mesh-study", S.stage_mesh_study, xb, law, pr)
-    fam = timed("family", S.stage_family, xb, law, pr)
+    return confirm, per_law
+
+
+def _refits(S, timed, xb, law: str, pr: str) -> tuple[list, list, dict | None]:
+    """The re-fits at other lengths and with the text's yield, each confirmed on the default mesh."""
+    a = S.args
     refit = timed("refit", S.stage_refit, xb, law, pr) if a.refit_L else []
     refit_confirm = []
     for rf in refit:
@@ -718,6 +714,36 @@ def main() -> int:
         ytext = {"yield": a.text_yield, "J_coarse": yt["J"], "x": c["x"], "params": c["params"],
                  "J": c["J"], "acceptance": c["acceptance"], "res": c["res"]}
         S.log(f"confirm yield {a.text_yield / 1e6:.0f} MPa: J = {c['J']:.2f}")
+    return refit, refit_confirm, ytext
+
+
+def main() -> int:
+    a = _arguments()
+    import recon_report  # noqa: E402
+    out = Path(a.work) / "reconstruction" if a.quick else Path(a.out)
+    if a.report_only:
+        result = json.loads((out / "search.json").read_text())
+        result["evaluations"] = [expand(e) for e in result["evaluations"]]
+        finish(result, out, recon_report, scenes=not a.no_scenes and not result["quick"])
+        return 0
+
+    S = Search(a)
+    S.log(f"solver {S.binary} sha256 {S.runner.bin_sha[:12]}, {len(S.runner.cache)} cached runs, "
+          f"jobs {a.jobs}, {'QUICK' if a.quick else 'full'} mode")
+    timed = _Timed(S)
+    timing = timed.timing
+    mesh = timed("mesh", S.stage_mesh)
+    eg = timed("elastic-grid", S.stage_elastic_grid)
+    pg = timed("plastic-grid", S.stage_plastic_grid, eg)
+    polished = timed("polish", S.stage_polish, pg)
+    keep = Path(a.work) / "confirm"
+    confirm, per_law = _confirm_polished(S, timed, polished, keep)
+    law, pr, xb = confirm["law"], confirm["pairing"], confirm["x"]
+    bkey = f"{law}/{pr}"
+    S.log(f"chosen: {bkey} at {fmt_x(xb)}; default-mesh J = {confirm['J']:.2f}")
+    mstudy = timed("mesh-study", S.stage_mesh_study, xb, law, pr)
+    fam = timed("family", S.stage_family, xb, law, pr)
+    refit, refit_confirm, ytext = _refits(S, timed, xb, law, pr)
     sat = timed("saturation", S.stage_saturation, xb, law, pr)
     laws = timed("laws", S.stage_laws, xb)
     t1_pl_dur = PAPER_T1["contact_duration"]["plastic"] * 1e-3
