@@ -256,6 +256,19 @@ fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
     }
 }
 
+/// The hardening as a scene writes it: `{linear: 4.14e9}` (Pa) or
+/// `{table: [[0, 2.5e8], [0.05, 3.2e8]]}` (equivalent plastic strain, flow stress Pa).
+fn hardening_text(h: &impact_solver::scene::Hardening) -> String {
+    use impact_solver::scene::Hardening;
+    match h {
+        Hardening::Linear { tangent_modulus } => format!("{{linear: {tangent_modulus:e}}}"),
+        Hardening::Table(rows) => {
+            let rows: Vec<String> = rows.iter().map(|(e, s)| format!("[{e}, {s:e}]")).collect();
+            format!("{{table: [{}]}}", rows.join(", "))
+        }
+    }
+}
+
 /// The modelling of a run, in words, for the report.
 pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String, String> {
     let mut m = BTreeMap::new();
@@ -271,8 +284,9 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
     let plastic = match &mat.plasticity {
         None => "elastic".to_string(),
         Some(pl) => format!(
-            "von Mises, yield {:.4e} Pa, hardening {:?}",
-            pl.yield_stress, pl.hardening
+            "von Mises, yield {:e} Pa, hardening {}",
+            pl.yield_stress,
+            hardening_text(&pl.hardening)
         ),
     };
     m.insert(

@@ -2,7 +2,6 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::plot::{svg_plot, Series};
 use crate::repo::Repo;
 
 /// Writes environment.json (commit, rustc, machine, date, wall time) next to results.json.
@@ -60,171 +59,6 @@ fn fmt(x: Option<f64>) -> String {
 
 fn get_f(v: &serde_json::Value) -> Option<f64> {
     v.as_f64()
-}
-
-/// History plots of a case from the runs folder, with references overlaid.
-fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    let suite = c["suite"].as_str().unwrap_or("");
-    let case = c["case"].as_str().unwrap_or("");
-    let dir = runs.join(suite).join(case);
-    for p in c["plots"].as_array().into_iter().flatten() {
-        let title = p["title"].as_str().unwrap_or("");
-        let scale = p["scale"].as_f64().unwrap_or(1.0);
-        let unit = p["unit"].as_str().unwrap_or("");
-        let scenes: Vec<&str> = p["scenes"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(|s| s.as_str())
-            .collect();
-        let columns: Vec<&str> = p["columns"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(|s| s.as_str())
-            .collect();
-        let (xlabel, xscale) = match p["x_label"].as_str() {
-            Some(l) => (l, 1.0),
-            None => ("time (ms)", 1e3),
-        };
-        let mut series: Vec<Series> = Vec::new();
-        let load = |path: &Path, col: &str| {
-            crate::check::read_csv_columns(path, col).map(|(t, v)| {
-                t.iter()
-                    .zip(&v)
-                    .map(|(t, v)| (t * xscale, v * scale))
-                    .collect::<Vec<_>>()
-            })
-        };
-        if let Some(col) = p["column"].as_str() {
-            for s in &scenes {
-                if let Ok(d) = load(&dir.join(s).join("history.csv"), col) {
-                    series.push((s.to_string(), d, false));
-                }
-            }
-            for r in p["references"]
-                .as_array()
-                .into_iter()
-                .flatten()
-                .filter_map(|s| s.as_str())
-            {
-                let path = if r.starts_with("reference-data") {
-                    root.join(r)
-                } else {
-                    dir.join(r).join("history.csv")
-                };
-                if let Ok(d) = load(&path, col) {
-                    let label = if r.starts_with("reference-data") {
-                        format!(
-                            "ref: {}",
-                            r.trim_start_matches("reference-data/")
-                                .trim_end_matches("/history.csv")
-                        )
-                    } else {
-                        format!("ref: {r}")
-                    };
-                    series.push((label, d, true));
-                }
-            }
-            let ylabel = if unit.is_empty() {
-                col.to_string()
-            } else {
-                format!("{col} ({unit})")
-            };
-            out.push((title.to_string(), svg_plot(title, xlabel, &ylabel, &series)));
-        } else {
-            for s in &scenes {
-                let mut series: Vec<Series> = Vec::new();
-                for col in &columns {
-                    if let Ok(d) = load(&dir.join(s).join("history.csv"), col) {
-                        series.push((col.to_string(), d, false));
-                    }
-                }
-                out.push((
-                    format!("{title} ({s})"),
-                    svg_plot(title, xlabel, unit, &series),
-                ));
-            }
-        }
-    }
-    // Convergence plots: log10 |f - f_extrapolated| against log10 h (h = 1 / level).
-    if let Some(series) = c["series"].as_object() {
-        for (name, sd) in series {
-            let levels: Vec<f64> = sd["levels"]
-                .as_array()
-                .into_iter()
-                .flatten()
-                .filter_map(get_f)
-                .collect();
-            for (metric, vals) in sd["metrics"].as_object().into_iter().flatten() {
-                let f: Vec<f64> = vals
-                    .as_array()
-                    .into_iter()
-                    .flatten()
-                    .filter_map(get_f)
-                    .collect();
-                let n = f.len();
-                if n < 3 || levels.len() != n {
-                    continue;
-                }
-                let r = levels[n - 1] / levels[n - 2];
-                let (p, title) = match crate::gci::assess(&f, r, None) {
-                    Ok(a) => {
-                        let orders: Vec<String> =
-                            a.orders.iter().map(|p| format!("{p:.2}")).collect();
-                        let p = a.finest_order();
-                        let all = orders.join(", ");
-                        (p, format!("{name}: {metric}, observed order p = {p:.2} (triplets coarse to fine: {all})"))
-                    }
-                    Err(_) => (
-                        f64::NAN,
-                        format!("{name}: {metric}, not in the asymptotic range (no order)"),
-                    ),
-                };
-                if p.is_finite() && p > 0.0 {
-                    let f_ext = f[n - 1] + (f[n - 1] - f[n - 2]) / (r.powf(p) - 1.0);
-                    let pts: Vec<(f64, f64)> = levels
-                        .iter()
-                        .zip(&f)
-                        .map(|(l, v)| ((1.0 / l).log10(), (v - f_ext).abs().log10()))
-                        .filter(|q| q.1.is_finite())
-                        .collect();
-                    let (hx, hy) = pts[pts.len() - 1];
-                    let fit: Vec<(f64, f64)> =
-                        pts.iter().map(|q| (q.0, hy + p * (q.0 - hx))).collect();
-                    out.push((
-                        title.clone(),
-                        svg_plot(
-                            &title,
-                            "log10 (h / h_base)",
-                            "log10 |f - f_extrapolated|",
-                            &[
-                                ("runs".into(), pts, false),
-                                (format!("slope p = {p:.2}"), fit, true),
-                            ],
-                        ),
-                    ));
-                } else {
-                    let pts: Vec<(f64, f64)> = levels
-                        .iter()
-                        .zip(&f)
-                        .map(|(l, v)| ((1.0 / l).log10(), *v))
-                        .collect();
-                    out.push((
-                        title.clone(),
-                        svg_plot(
-                            &title,
-                            "log10 (h / h_base)",
-                            metric,
-                            &[("runs".into(), pts, false)],
-                        ),
-                    ));
-                }
-            }
-        }
-    }
-    out
 }
 
 fn slug(s: &str) -> String {
@@ -311,80 +145,8 @@ pub fn write_report_with(
     std::fs::create_dir_all(out.join("plots"))?;
     let mut cases = Vec::new();
     let mut energy_plots = Vec::new();
-    let mut files = Vec::new();
     for c in results["cases"].as_array().into_iter().flatten() {
-        let checks: Vec<serde_json::Value> = c["checks"].as_array().cloned().unwrap_or_default();
-        let count = |s: &str| checks.iter().filter(|k| k["status"] == s).count();
-        let (ok, fail, skip) = (count("OK"), count("FAIL"), count("SKIP"));
-        let status = case_label(&checks);
-        let mut refs: Vec<String> = checks
-            .iter()
-            .map(|k| {
-                format!(
-                    "{}: {}",
-                    k["reference_kind"].as_str().unwrap_or(""),
-                    k["reference_source"].as_str().unwrap_or("")
-                )
-            })
-            .collect();
-        refs.sort();
-        refs.dedup();
-        let mut modelling = Vec::new();
-        for (scene, info) in c["modelling"].as_object().into_iter().flatten() {
-            for (k, v) in info.as_object().into_iter().flatten() {
-                modelling.push(serde_json::json!({"scene": scene, "key": k, "value": v}));
-            }
-        }
-        let job_errors: Vec<String> = c["job_errors"]
-            .as_object()
-            .into_iter()
-            .flatten()
-            .map(|(k, v)| format!("{k}: {}", v.as_str().unwrap_or("")))
-            .collect();
-        let rows: Vec<serde_json::Value> = checks
-            .iter()
-            .map(|k| {
-                let compare = match k["compare"].as_str() {
-                    Some("at_most") => "<= ",
-                    Some("at_least") => ">= ",
-                    _ => "",
-                };
-                let error = error_cell(k);
-                serde_json::json!({
-                    "id": k["id"], "title": k["title"], "status": check_label(k),
-                    "computed": fmt(get_f(&k["computed"])), "reference": fmt(get_f(&k["reference"])),
-                    "compare": compare, "kind": k["reference_kind"], "source": k["reference_source"],
-                    "error": error, "tolerance": k["tolerance"], "reason": k["tolerance_reason"],
-                    "message": k["message"], "known": k["known_failure"],
-                })
-            })
-            .collect();
-        let plots = case_plots(c, &runs, &repo.root);
-        let mut plot_files = Vec::new();
-        let suite = c["suite"].as_str().unwrap_or("");
-        for (i, (title, svg)) in plots.iter().enumerate() {
-            if svg.starts_with("<svg") || svg.starts_with("<?xml") {
-                let name = format!(
-                    "plots/{}-{}-{i}.svg",
-                    slug(suite),
-                    slug(c["case"].as_str().unwrap_or(""))
-                );
-                std::fs::write(out.join(&name), svg)?;
-                plot_files.push(name);
-            }
-            if suite == "energy" && title.to_lowercase().contains("energ") {
-                energy_plots.push(svg.clone());
-            }
-        }
-        cases.push(serde_json::json!({
-            "suite": c["suite"], "case": c["case"], "id": c["id"], "title": c["title"],
-            "anchor": slug(&format!("{}-{}", suite, c["case"].as_str().unwrap_or(""))),
-            "requirement_id": c["requirement_id"], "requirement": c["requirement"],
-            "category": c["category"], "heavy": c["heavy"], "problem": c["problem"],
-            "ok": ok, "fail": fail, "skip": skip, "status": status,
-            "references": refs, "modelling": modelling, "job_errors": job_errors,
-            "checks": rows, "plots": plots.iter().map(|p| p.1.clone()).collect::<Vec<_>>(), "plot_files": plot_files,
-        }));
+        cases.push(case_context(c, &runs, &repo.root, out, &mut energy_plots)?);
     }
     let (table1, table2) = paper_tables(&results, &repo.root);
     let reading = reading_context(&results);
@@ -438,9 +200,125 @@ pub fn write_report_with(
     let _ = jinja;
     std::fs::write(out.join("index.html"), html)?;
     std::fs::write(out.join("report.md"), md)?;
-    files.push(out.join("index.html"));
-    files.push(out.join("report.md"));
-    Ok(files)
+    Ok(vec![out.join("index.html"), out.join("report.md")])
+}
+
+/// One case's part of the report context: counts, status, references, the modelling table,
+/// failed runs, the check rows and the plots (written to `out/plots/`; the energy suite's
+/// energy plots also go to `energy_plots`).
+fn case_context(
+    c: &serde_json::Value,
+    runs: &Path,
+    root: &Path,
+    out: &Path,
+    energy_plots: &mut Vec<String>,
+) -> std::io::Result<serde_json::Value> {
+    let checks: Vec<serde_json::Value> = c["checks"].as_array().cloned().unwrap_or_default();
+    let count = |s: &str| checks.iter().filter(|k| k["status"] == s).count();
+    let mut refs: Vec<String> = checks
+        .iter()
+        .map(|k| {
+            format!(
+                "{}: {}",
+                k["reference_kind"].as_str().unwrap_or(""),
+                k["reference_source"].as_str().unwrap_or("")
+            )
+        })
+        .collect();
+    refs.sort();
+    refs.dedup();
+    let job_errors: Vec<String> = c["job_errors"]
+        .as_object()
+        .into_iter()
+        .flatten()
+        .map(|(k, v)| format!("{k}: {}", v.as_str().unwrap_or("")))
+        .collect();
+    let rows: Vec<serde_json::Value> = checks.iter().map(check_row).collect();
+    let suite = c["suite"].as_str().unwrap_or("");
+    let case = c["case"].as_str().unwrap_or("");
+    let plots = crate::report_plots::case_plots(c, runs, root);
+    let mut plot_files = Vec::new();
+    for (i, (title, svg)) in plots.iter().enumerate() {
+        if svg.starts_with("<svg") || svg.starts_with("<?xml") {
+            let name = format!("plots/{}-{}-{i}.svg", slug(suite), slug(case));
+            std::fs::write(out.join(&name), svg)?;
+            plot_files.push(name);
+        }
+        if suite == "energy" && title.to_lowercase().contains("energ") {
+            energy_plots.push(svg.clone());
+        }
+    }
+    Ok(serde_json::json!({
+        "suite": c["suite"], "case": c["case"], "id": c["id"], "title": c["title"],
+        "anchor": slug(&format!("{suite}-{case}")),
+        "requirement_id": c["requirement_id"], "requirement": c["requirement"],
+        "category": c["category"], "heavy": c["heavy"], "problem": c["problem"],
+        "ok": count("OK"), "fail": count("FAIL"), "skip": count("SKIP"),
+        "status": case_label(&checks),
+        "references": refs, "modelling": modelling_rows(&c["modelling"]), "job_errors": job_errors,
+        "checks": rows, "plots": plots.iter().map(|p| p.1.clone()).collect::<Vec<_>>(),
+        "plot_files": plot_files,
+    }))
+}
+
+/// One row of a case's check table.
+fn check_row(k: &serde_json::Value) -> serde_json::Value {
+    let compare = match k["compare"].as_str() {
+        Some("at_most") => "<= ",
+        Some("at_least") => ">= ",
+        _ => "",
+    };
+    serde_json::json!({
+        "id": k["id"], "title": k["title"], "status": check_label(k),
+        "computed": fmt(get_f(&k["computed"])), "reference": fmt(get_f(&k["reference"])),
+        "compare": compare, "kind": k["reference_kind"], "source": k["reference_source"],
+        "error": error_cell(k), "tolerance": k["tolerance"], "reason": k["tolerance_reason"],
+        "message": k["message"], "known": k["known_failure"],
+    })
+}
+
+/// The modelling table of a case (results.json's scene -> what -> value), one row per
+/// `what`: a value shared by every scene once ("all 12 scenes"), else each distinct value
+/// once with the scenes that share it, so a mesh or dt series reads as one row.
+fn modelling_rows(modelling: &serde_json::Value) -> Vec<serde_json::Value> {
+    let scenes: Vec<(&String, &serde_json::Value)> =
+        modelling.as_object().into_iter().flatten().collect();
+    let mut keys: Vec<&String> = Vec::new();
+    for (_, info) in &scenes {
+        for k in info.as_object().into_iter().flatten().map(|(k, _)| k) {
+            if !keys.contains(&k) {
+                keys.push(k);
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for key in keys {
+        // (value, scenes with it), in the scenes' order.
+        let mut values: Vec<(&str, Vec<&str>)> = Vec::new();
+        for (scene, info) in &scenes {
+            let Some(v) = info[key.as_str()].as_str() else {
+                continue;
+            };
+            match values.iter_mut().find(|(w, _)| *w == v) {
+                Some((_, s)) => s.push(scene),
+                None => values.push((v, vec![scene])),
+            }
+        }
+        let shared = values.len() == 1 && values[0].1.len() == scenes.len();
+        let lines: Vec<serde_json::Value> = values
+            .iter()
+            .map(|(v, s)| {
+                let which = match (shared, s.len()) {
+                    (true, 1) => String::new(),
+                    (true, n) => format!("all {n} scenes"),
+                    (false, _) => s.join(", "),
+                };
+                serde_json::json!({"scenes": which, "value": v})
+            })
+            .collect();
+        rows.push(serde_json::json!({"key": key, "lines": lines}));
+    }
+    rows
 }
 
 fn rel(c: Option<f64>, p: Option<f64>) -> String {
@@ -656,5 +534,25 @@ mod label_tests {
         let within = json!({"compare": "within", "computed": 1.1, "reference": 1.0,
                             "error": 0.1, "error_kind": "relative"});
         assert_eq!(error_cell(&within), format!("{} rel", fmt(Some(0.1))));
+    }
+
+    #[test]
+    fn modelling_tables_show_each_value_once_with_its_scenes() {
+        // A dt series of three scenes on one mesh: one row per "what", the shared value once.
+        let m = json!({
+            "dt-1": {"mesh": "80 x 16 q4-sri", "dt": "1e-7 s"},
+            "dt-2": {"mesh": "80 x 16 q4-sri", "dt": "5e-8 s"},
+            "dt-4": {"mesh": "80 x 16 q4-sri", "dt": "2.5e-8 s"},
+        });
+        let rows = modelling_rows(&m);
+        assert_eq!(rows.len(), 2, "{rows:?}");
+        assert_eq!(rows[0]["key"], "dt");
+        let dt = rows[0]["lines"].as_array().unwrap();
+        assert_eq!(dt.len(), 3);
+        assert_eq!(dt[0], json!({"scenes": "dt-1", "value": "1e-7 s"}));
+        assert_eq!(
+            rows[1]["lines"],
+            json!([{"scenes": "all 3 scenes", "value": "80 x 16 q4-sri"}])
+        );
     }
 }

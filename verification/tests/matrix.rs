@@ -130,9 +130,28 @@ fn light_matrix_known_failures_only_outputs_and_snapshots() {
             && !offline.contains("https://"),
         "the report must open offline"
     );
-    assert!(std::fs::read_to_string(out.join("report.md"))
-        .unwrap()
-        .contains("| REQ-LIT-TABLE1 |"));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("| REQ-LIT-TABLE1 |"));
+    // Values read as the scene writes them (issue 13): no Rust Debug text such as
+    // `Linear { tangent_modulus: 4140000000.0 }`, and the hardening as in a scene.
+    for (i, _) in md.match_indices("{ ") {
+        let word: String = md[i + 2..]
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+            .collect();
+        assert!(
+            !(md[i + 2 + word.len()..].starts_with(": ") && !word.is_empty()),
+            "Debug text in the report: {}",
+            &md[i.saturating_sub(40)..(i + 60).min(md.len())]
+        );
+    }
+    assert!(
+        md.contains("hardening {linear: 4.14e9}"),
+        "the paper's hardening as written"
+    );
+    // Modelling tables: one row per "what" (a series of scenes shares a row), not one per
+    // scene and what: the heavy convergence case had ~150 rows.
+    assert!(md.contains("| what | value (scenes) |"));
     // No benchmarks folder next to the results: the performance section says how to make one.
     assert!(html.contains("<b>No benchmark results:</b>"));
     // With the fixtures of tests/support (not the real folders): the reconstruction page

@@ -1,0 +1,257 @@
+//! The plots of one case in the report: the histories its `plots:` ask for (references
+//! overlaid, axes named for the quantity with engineering units, curves that sit on zero on
+//! their own scale), then one convergence plot per series metric its checks use (axes named
+//! for the refined quantity, element size or time step; no observed order for changes at
+//! round-off level).
+
+use std::path::Path;
+
+use crate::plot::{column_axis, quantity_of, svg_panels, svg_plot, Axis, Series};
+
+/// A change smaller than this fraction of the values is round-off (about 1e4 machine
+/// epsilons): no order can be read from it.
+const ROUND_OFF: f64 = 1e-12;
+
+/// (title, svg) of each plot of the case `c` (a case of results.json), its histories read
+/// from `runs/<suite>/<case>/`, references from the repository `root`.
+pub fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(String, String)> {
+    let suite = c["suite"].as_str().unwrap_or("");
+    let case = c["case"].as_str().unwrap_or("");
+    let dir = runs.join(suite).join(case);
+    let mut out = Vec::new();
+    for p in c["plots"].as_array().into_iter().flatten() {
+        out.extend(history_plots(p, &dir, root));
+    }
+    for (name, sd) in c["series"].as_object().into_iter().flatten() {
+        out.extend(convergence_plots(name, sd));
+    }
+    out
+}
+
+fn strings(v: &serde_json::Value) -> Vec<&str> {
+    v.as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|s| s.as_str())
+        .collect()
+}
+
+/// The y axis of a plot of `columns`: their common unit suffix (`_N`, `_J`, ... : SI values,
+/// engineering ticks), else the plot's own `unit` and `scale` (dimensionless ticks, the unit
+/// in the axis name). (name, unit, scale).
+fn y_axis(columns: &[&str], p: &serde_json::Value) -> (String, &'static str, f64) {
+    let units: Vec<&'static str> = columns.iter().map(|c| column_axis(c).1).collect();
+    let unit = units[0];
+    let name = if columns.len() == 1 {
+        column_axis(columns[0]).0
+    } else {
+        quantity_of(unit).to_string()
+    };
+    if !unit.is_empty() && units.iter().all(|u| *u == unit) {
+        return (name, unit, 1.0);
+    }
+    let scale = p["scale"].as_f64().unwrap_or(1.0);
+    match p["unit"].as_str() {
+        Some(u) if !u.is_empty() && u != "-" => (format!("{name} ({u})"), "", scale),
+        _ => (name, "", scale),
+    }
+}
+
+/// The plot(s) of one `plots:` entry: one `column` of several scenes (and references), or
+/// several `columns` of each scene.
+fn history_plots(p: &serde_json::Value, dir: &Path, root: &Path) -> Vec<(String, String)> {
+    let title = p["title"].as_str().unwrap_or("");
+    let scenes = strings(&p["scenes"]);
+    let x = match p["x_label"].as_str() {
+        Some(l) => Axis::new(l, ""),
+        None => Axis::new("time", "s"),
+    };
+    let load = |path: &Path, col: &str, scale: f64| {
+        crate::check::read_csv_columns(path, col)
+            .map(|(t, v)| t.iter().zip(&v).map(|(t, v)| (*t, v * scale)).collect())
+    };
+    if let Some(col) = p["column"].as_str() {
+        let (name, unit, scale) = y_axis(&[col], p);
+        let mut series: Vec<Series> = Vec::new();
+        for s in &scenes {
+            if let Ok(d) = load(&dir.join(s).join("history.csv"), col, scale) {
+                series.push((s.to_string(), d, false));
+            }
+        }
+        for r in strings(&p["references"]) {
+            let (path, label) = match r.strip_prefix("reference-data/") {
+                Some(rest) => (root.join(r), rest.trim_end_matches("/history.csv")),
+                None => (dir.join(r).join("history.csv"), r),
+            };
+            if let Ok(d) = load(&path, col, scale) {
+                series.push((format!("ref: {label}"), d, true));
+            }
+        }
+        return svg_panels(title, x, Axis::new(&name, unit), &series);
+    }
+    let columns = strings(&p["columns"]);
+    if columns.is_empty() {
+        return Vec::new();
+    }
+    let (name, unit, scale) = y_axis(&columns, p);
+    let mut out = Vec::new();
+    for s in &scenes {
+        let series: Vec<Series> = columns
+            .iter()
+            .filter_map(|col| {
+                let d = load(&dir.join(s).join("history.csv"), col, scale).ok()?;
+                Some((column_axis(col).0, d, false))
+            })
+            .collect();
+        for (t, svg) in svg_panels(title, x, Axis::new(&name, unit), &series) {
+            out.push((format!("{t} ({s})"), svg));
+        }
+    }
+    out
+}
+
+/// The x axis of a convergence plot: log10 of the refined size over the coarsest one.
+fn refinement_axis(refine: &str) -> &'static str {
+    if refine == "dt" {
+        "log10 (time step / coarsest time step)"
+    } else {
+        "log10 (element size / coarsest element size)"
+    }
+}
+
+/// The largest change between consecutive levels as a fraction of the largest value, when it
+/// is at round-off level (else None).
+pub fn round_off_change(f: &[f64]) -> Option<f64> {
+    let size = f.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let change = f
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(0.0, f64::max);
+    let rel = if size > 0.0 { change / size } else { 0.0 };
+    (rel <= ROUND_OFF).then_some(rel)
+}
+
+/// One plot per metric of the series `name`: log10 |f - f_extrapolated| against log10 of the
+/// refined size with the observed order's slope; the values themselves when the order cannot
+/// be read (not asymptotic, or changes at round-off level).
+fn convergence_plots(name: &str, sd: &serde_json::Value) -> Vec<(String, String)> {
+    let floats = |v: &serde_json::Value| -> Vec<f64> {
+        v.as_array()
+            .into_iter()
+            .flatten()
+            .filter_map(|x| x.as_f64())
+            .collect()
+    };
+    let levels = floats(&sd["levels"]);
+    let x_name = refinement_axis(sd["refine"].as_str().unwrap_or("mesh"));
+    let mut out = Vec::new();
+    for (metric, vals) in sd["metrics"].as_object().into_iter().flatten() {
+        let f = floats(vals);
+        let n = f.len();
+        if n < 3 || levels.len() != n {
+            continue;
+        }
+        let (label, unit) = column_axis(metric);
+        let log_h: Vec<f64> = levels.iter().map(|l| (1.0 / l).log10()).collect();
+        let x = Axis::new(x_name, "");
+        // The values themselves, when no order can be read from them.
+        let values_plot = |title: String| {
+            let pts: Vec<(f64, f64)> = log_h.iter().copied().zip(f.iter().copied()).collect();
+            let svg = svg_plot(
+                &title,
+                x,
+                Axis::new(&label, unit),
+                &[("runs".into(), pts, false)],
+            );
+            (title, svg)
+        };
+        if let Some(rel) = round_off_change(&f) {
+            out.push(values_plot(format!("{name}: {label} changes only at round-off level (largest change {rel:.1e} of the value): no order")));
+            continue;
+        }
+        let r = levels[n - 1] / levels[n - 2];
+        let assessed = crate::gci::assess(&f, r, None)
+            .ok()
+            .map(|a| (a.finest_order(), a.orders))
+            .filter(|(p, _)| p.is_finite() && *p > 0.0);
+        let Some((p, orders)) = assessed else {
+            out.push(values_plot(format!(
+                "{name}: {label}, not in the asymptotic range (no order)"
+            )));
+            continue;
+        };
+        let all: Vec<String> = orders.iter().map(|p| format!("{p:.2}")).collect();
+        let title = format!(
+            "{name}: {label}, observed order p = {p:.2} (triplets coarse to fine: {})",
+            all.join(", ")
+        );
+        let f_ext = f[n - 1] + (f[n - 1] - f[n - 2]) / (r.powf(p) - 1.0);
+        let pts: Vec<(f64, f64)> = log_h
+            .iter()
+            .zip(&f)
+            .map(|(h, v)| (*h, (v - f_ext).abs().log10()))
+            .filter(|q| q.1.is_finite())
+            .collect();
+        let Some(&(hx, hy)) = pts.last() else {
+            continue;
+        };
+        let fit: Vec<(f64, f64)> = pts.iter().map(|q| (q.0, hy + p * (q.0 - hx))).collect();
+        let y = Axis::new("log10 |f - f_extrapolated|", "");
+        let series = [
+            ("runs".into(), pts, false),
+            (format!("slope p = {p:.2}"), fit, true),
+        ];
+        out.push((title.clone(), svg_plot(&title, x, y, &series)));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    //! Convergence plots (issue 13): no observed order for changes at round-off level (the old
+    //! titles printed p = -3.72 for them), and dt studies are named for the time step.
+    use super::*;
+
+    #[test]
+    fn round_off_changes_get_no_order() {
+        let flat = [1.0, 1.0 + 2e-16, 1.0 - 1e-16, 1.0 + 3e-16];
+        assert!(round_off_change(&flat).is_some());
+        assert!(round_off_change(&[1.0, 1.1, 1.12]).is_none());
+        let sd = serde_json::json!({"refine": "dt", "levels": [1.0, 2.0, 4.0, 8.0],
+            "metrics": {"impulse_Ns": flat}});
+        let plots = convergence_plots("dt-elastic", &sd);
+        assert_eq!(plots.len(), 1);
+        assert!(
+            plots[0].0.contains("changes only at round-off level"),
+            "{}",
+            plots[0].0
+        );
+        assert!(!plots[0].0.contains("order p ="), "{}", plots[0].0);
+        assert!(plots[0]
+            .1
+            .contains("log10 (time step / coarsest time step)"));
+        assert!(!plots[0].1.contains("h_base"));
+    }
+
+    #[test]
+    fn a_converging_series_shows_its_order_against_element_size() {
+        // f = 1 + h^2: order 2.
+        let f: Vec<f64> = [1.0, 2.0, 4.0, 8.0]
+            .iter()
+            .map(|l: &f64| 1.0 + 0.1 / (l * l))
+            .collect();
+        let sd = serde_json::json!({"refine": "mesh", "levels": [1.0, 2.0, 4.0, 8.0],
+            "metrics": {"max_plate_displacement_m": f}});
+        let plots = convergence_plots("mesh", &sd);
+        assert!(
+            plots[0]
+                .0
+                .contains("max plate displacement, observed order p = 2.00"),
+            "{}",
+            plots[0].0
+        );
+        assert!(plots[0]
+            .1
+            .contains("log10 (element size / coarsest element size)"));
+    }
+}
