@@ -7,12 +7,14 @@
 //!   measures them (harness builtin `plane-wave`, work-precision benchmark `wave-p`).
 //! - [`beam`]: static clamped-clamped beam under a central load (Euler-Bernoulli, shear).
 //! - [`modal_beam`]: the same beam under a rectangular pulse, by modal superposition.
+//! - [`timoshenko_modal`]: natural frequencies of a Timoshenko beam (clamped or pinned ends).
 //! - [`hertz_line`]: the paper's line-contact law, eq. (4), in any consistent units.
 
 pub mod beam;
 pub mod hertz_line;
 pub mod modal_beam;
 pub mod plane_wave;
+pub mod timoshenko_modal;
 
 /// `Ok(x)` when `x` is finite and > 0, else the message naming `what`.
 pub(crate) fn positive(what: &str, x: f64) -> Result<f64, String> {

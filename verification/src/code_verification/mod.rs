@@ -4,6 +4,8 @@
 //! history ("orders") for the report's order plots.
 
 pub mod bar_wave;
+pub mod bending_period;
+pub mod collapse;
 pub mod driver;
 pub mod element_eigen;
 pub mod macneal_harder;
@@ -21,7 +23,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 8] = [
+pub const NAMES: [&str; 10] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -30,6 +32,8 @@ pub const NAMES: [&str; 8] = [
     "plastic-strain-path",
     "element-eigenvalues",
     "plastic-bar-wave",
+    "static-collapse",
+    "bending-period",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -43,6 +47,8 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "plastic-strain-path" => plastic_path::plastic_strain_path(p),
         "element-eigenvalues" => element_eigen::element_eigenvalues(p),
         "plastic-bar-wave" => bar_wave::plastic_bar_wave(p),
+        "static-collapse" => collapse::static_collapse(p),
+        "bending-period" => bending_period::bending_period(p),
         _ => return None,
     })
 }
