@@ -6,7 +6,9 @@
 //! - memory does not grow with the run's length when streamed: measured with a counting
 //!   allocator, the peak heap of a run with a row every step grows by less than 1 % of its
 //!   rows' bytes from one length to ten times that length, while the in-memory run's peak
-//!   grows by at least its rows' bytes (so the measurement can fail).
+//!   grows by at least its rows' bytes (so the measurement can fail);
+//! - no allocation in the time loop: the streamed run of ten times the steps makes at most a
+//!   handful more allocations (a per-step allocation would add tens of thousands).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::{Path, PathBuf};
@@ -21,9 +23,11 @@ struct Counting;
 
 static LIVE: AtomicUsize = AtomicUsize::new(0);
 static PEAK: AtomicUsize = AtomicUsize::new(0);
+static CALLS: AtomicUsize = AtomicUsize::new(0);
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        CALLS.fetch_add(1, Ordering::SeqCst);
         let live = LIVE.fetch_add(layout.size(), Ordering::SeqCst) + layout.size();
         PEAK.fetch_max(live, Ordering::SeqCst);
         unsafe { System.alloc(layout) }
@@ -105,31 +109,34 @@ fn the_streamed_history_csv_equals_the_in_memory_one_byte_for_byte() {
     }
 }
 
-/// Peak heap growth (bytes) of a run of `end` s, streamed or held, and its rows x columns.
-fn peak_growth(end: f64, keep_history: bool, out: &Path) -> (usize, usize) {
+/// Peak heap growth (bytes) of a run of `end` s, streamed or held, its rows x columns, and the
+/// allocations it made.
+fn peak_growth(end: f64, keep_history: bool, out: &Path) -> (usize, usize, usize) {
+    let calls = CALLS.load(Ordering::SeqCst);
     let mut s = scene(ELASTIC, 10, 2);
     s.output.every = None;
     s.time.end = impact_solver::scene::End::At(end);
     let before = reset_peak();
     let outcome = to_dir(&s, out, keep_history);
     let growth = PEAK.load(Ordering::SeqCst) - before;
+    let calls = CALLS.load(Ordering::SeqCst) - calls;
     let text = std::fs::read_to_string(out.join("history.csv")).unwrap();
     let values = (text.lines().count() - 1) * outcome.history.columns.len();
-    (growth, values)
+    (growth, values, calls)
 }
 
 #[test]
 fn a_streamed_history_holds_no_rows_in_memory_however_long_the_run() {
     let _serial = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     let d = dir("memory");
-    let (short_streamed, short_values) = peak_growth(2.0e-3, false, &d.join("a"));
-    let (long_streamed, long_values) = peak_growth(2.0e-2, false, &d.join("b"));
-    let (short_held, _) = peak_growth(2.0e-3, true, &d.join("c"));
-    let (long_held, _) = peak_growth(2.0e-2, true, &d.join("d"));
+    let (short_streamed, short_values, short_calls) = peak_growth(2.0e-3, false, &d.join("a"));
+    let (long_streamed, long_values, long_calls) = peak_growth(2.0e-2, false, &d.join("b"));
+    let (short_held, _, _) = peak_growth(2.0e-3, true, &d.join("c"));
+    let (long_held, _, _) = peak_growth(2.0e-2, true, &d.join("d"));
     let _ = std::fs::remove_dir_all(&d);
     let added_bytes = 8 * (long_values - short_values);
     eprintln!(
-        "peak heap growth: streamed {short_streamed} -> {long_streamed} B, held {short_held} -> {long_held} B, {added_bytes} B more of rows"
+        "peak heap growth: streamed {short_streamed} -> {long_streamed} B, held {short_held} -> {long_held} B, {added_bytes} B more of rows; allocations of the streamed runs {short_calls} -> {long_calls}"
     );
     assert!(added_bytes > 1_000_000, "{added_bytes} bytes: too short");
     // Held in memory, the longer run's peak carries its extra rows (the check can fail).
@@ -141,5 +148,11 @@ fn a_streamed_history_holds_no_rows_in_memory_however_long_the_run() {
     assert!(
         long_streamed < short_streamed + added_bytes / 100,
         "streamed: {short_streamed} -> {long_streamed} bytes for {added_bytes} more bytes of rows"
+    );
+    // No allocation in the loop: ten times the steps (tens of thousands more) allocate at most a
+    // few times more (a contact interval's entry; 2 measured).
+    assert!(
+        long_calls <= short_calls + 8,
+        "streamed: {short_calls} -> {long_calls} allocations"
     );
 }
