@@ -90,12 +90,9 @@ pub fn tick_labels(lo: f64, hi: f64, unit: &str) -> impl Fn(&f64) -> String {
     let ticks: Vec<f64> = RangedCoordf64::from(lo..hi).key_points(TICKS);
     let label = move |v: f64, d: usize| {
         let s = format!("{:.*}", d, v * scale);
-        // "-0" and "-0.00" read as zero.
-        if s.trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            s.trim_start_matches('-').to_string()
+        // "-0", "0.00" and "-0.00" read as zero.
+        if s.chars().all(|c| c == '0' || c == '.' || c == '-') {
+            "0".to_string()
         } else {
             s
         }
@@ -107,7 +104,12 @@ pub fn tick_labels(lo: f64, hi: f64, unit: &str) -> impl Fn(&f64) -> String {
             l.len() == ticks.len()
         })
         .unwrap_or(9);
-    move |v: &f64| format!("{}{suffix}", label(*v, decimals))
+    // Zero needs no exponent ("0", not "0e-6"); with a unit it keeps it ("0 ms").
+    let exponent_only = unit.is_empty();
+    move |v: &f64| match label(*v, decimals) {
+        l if l == "0" && exponent_only => l,
+        l => format!("{l}{suffix}"),
+    }
 }
 
 /// An SVG line plot (references dashed) as a string, or a note when it cannot be drawn.
@@ -126,23 +128,30 @@ fn peak(s: &Series) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// [`svg_plot`], or two panels when some curves stay below 1/20 of the largest curve's peak
+/// [`svg_plot`], or more panels when some curves stay below 1/20 of the largest curve's peak
 /// (they would sit on its zero line): the large curves, then the small ones on their own
-/// scale, titled so. (title, svg) per panel.
+/// scale, titled so, and the same again among the small ones (three panels at most).
+/// (title, svg) per panel.
 pub fn svg_panels(title: &str, x: Axis, y: Axis, series: &[Series]) -> Vec<(String, String)> {
-    let largest = series.iter().map(peak).fold(0.0, f64::max);
-    let (small, large): (Vec<Series>, Vec<Series>) = series
-        .iter()
-        .cloned()
-        .partition(|s| peak(s) < largest / 20.0);
-    if small.is_empty() || large.is_empty() {
-        return vec![(title.to_string(), svg_plot(title, x, y, series))];
+    let mut out = Vec::new();
+    let mut rest = series.to_vec();
+    let mut panel_title = title.to_string();
+    loop {
+        let largest = rest.iter().map(peak).fold(0.0, f64::max);
+        let (small, large): (Vec<Series>, Vec<Series>) =
+            rest.iter().cloned().partition(|s| peak(s) < largest / 20.0);
+        if small.is_empty() || large.is_empty() || out.len() == 2 {
+            out.push((panel_title.clone(), svg_plot(&panel_title, x, y, &rest)));
+            return out;
+        }
+        out.push((panel_title.clone(), svg_plot(&panel_title, x, y, &large)));
+        panel_title = if out.len() == 1 {
+            format!("{title}: the curves near zero, on their own scale")
+        } else {
+            format!("{title}: the smallest curves, on their own scale")
+        };
+        rest = small;
     }
-    let own = format!("{title}: the curves near zero, on their own scale");
-    vec![
-        (title.to_string(), svg_plot(title, x, y, &large)),
-        (own.clone(), svg_plot(&own, x, y, &small)),
-    ]
 }
 
 /// The data's bounding box (x0, x1, y0, y1), widened where it is flat and padded by 5 % in y.
@@ -273,7 +282,8 @@ mod tests {
         assert_eq!(f(&800.0), "0.8 kJ");
         assert_eq!(f(&1600.0), "1.6 kJ");
         assert_eq!(labels(0.0, 3.0e-3, "s"), ["0 ms", "1 ms", "2 ms", "3 ms"]);
-        assert_eq!(labels(0.0, 1.2e-3, "s"), ["0.0 ms", "0.5 ms", "1.0 ms"]);
+        assert_eq!(labels(0.0, 1.2e-3, "s"), ["0 ms", "0.5 ms", "1.0 ms"]);
+        assert_eq!(labels(0.0, 4.0e-6, "")[0], "0");
         assert_eq!(labels(-2.0e-6, 0.0, "m")[1], "-1.5 µm");
         assert_eq!(labels(0.0, 4.0e-6, "")[2], "2e-6");
         assert_eq!(labels(-0.6, 0.0, "")[0], "-0.5");
@@ -329,6 +339,19 @@ mod tests {
         assert_eq!(panels.len(), 2);
         assert!(panels[1].0.contains("on their own scale"), "{panels:?}");
         assert!(panels[1].1.contains("elastic") && !panels[1].1.contains("literal"));
-        assert_eq!(svg_panels("one", axis, axis, &[big]).len(), 1);
+        assert_eq!(svg_panels("one", axis, axis, &[big.clone()]).len(), 1);
+        // Three scales (0.1, 3e-4, 1e-6, as the literal pairing, the pulse and the impacts):
+        // three panels, the smallest curve alone in the last.
+        let middle: Series = ("pulse".into(), curve(3e-4), false);
+        let tiny: Series = ("plastic".into(), curve(1e-6), false);
+        let panels = svg_panels("balance", axis, axis, &[big, middle, tiny]);
+        assert_eq!(
+            panels.len(),
+            3,
+            "{:?}",
+            panels.iter().map(|p| &p.0).collect::<Vec<_>>()
+        );
+        assert!(panels[2].0.contains("the smallest curves") && panels[2].1.contains("plastic"));
+        assert!(!panels[2].1.contains("pulse"));
     }
 }
