@@ -4,14 +4,14 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use impact_solver::History;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::case::{
     CheckFile, Compare, MeasureFile, Norm, Reduce, ReferenceFile, Refine, SeriesSpec,
 };
 use crate::jobs::{series_scene_name, JobResult};
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Status {
     #[serde(rename = "OK")]
     Ok,
@@ -31,8 +31,17 @@ impl Status {
     }
 }
 
-/// The outcome of one check, as printed in the matrix and written to results.json.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// Whether a check's error is divided by |reference| (results.json: "relative", "absolute").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ErrorKind {
+    Relative,
+    Absolute,
+}
+
+/// The outcome of one check, as printed in the matrix and written to results.json (and read
+/// back from it by the report).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CheckResult {
     pub id: String,
     pub title: String,
@@ -41,8 +50,7 @@ pub struct CheckResult {
     pub reference: Option<f64>,
     /// `computed - reference`, divided by |reference| when the tolerance is relative.
     pub error: Option<f64>,
-    /// "relative" or "absolute".
-    pub error_kind: &'static str,
+    pub error_kind: ErrorKind,
     pub compare: Compare,
     /// The tolerance as written (e.g. "rel 5.0e-2, abs 1.0e-9, floor 1.0e-12").
     pub tolerance: String,
@@ -100,9 +108,9 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         reference: None,
         error: None,
         error_kind: if tol.relative.is_some() {
-            "relative"
+            ErrorKind::Relative
         } else {
-            "absolute"
+            ErrorKind::Absolute
         },
         compare: check.compare,
         tolerance: fmt_tol(&tol),

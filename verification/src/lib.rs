@@ -9,6 +9,7 @@ pub mod builtins;
 pub mod case;
 pub mod case_progress;
 pub mod check;
+pub mod check_row;
 pub mod code_verification;
 pub mod data;
 pub mod diff;

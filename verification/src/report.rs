@@ -2,7 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::check::CheckResult;
+use crate::check_row::CheckRow;
 use crate::repo::Repo;
+use crate::verdict::Verdict;
 
 /// Writes environment.json (commit, rustc, machine, date, wall time) next to results.json.
 pub fn write_environment(repo: &Repo, out: &Path, wall_s: f64, jobs: usize) -> std::io::Result<()> {
@@ -55,10 +58,6 @@ const MD_TEMPLATE: &str = include_str!("../templates/report.md.j2");
 
 fn fmt(x: Option<f64>) -> String {
     crate::runner::num(x)
-}
-
-fn get_f(v: &serde_json::Value) -> Option<f64> {
-    v.as_f64()
 }
 
 fn slug(s: &str) -> String {
@@ -261,19 +260,20 @@ fn case_context(
     }))
 }
 
-/// One row of a case's check table.
+/// One row of a case's check table: the typed check read back from results.json, its cells
+/// from the formatter the terminal and JUnit share.
 fn check_row(k: &serde_json::Value) -> serde_json::Value {
-    let compare = match k["compare"].as_str() {
-        Some("at_most") => "<= ",
-        Some("at_least") => ">= ",
-        _ => "",
+    let Ok(typed) = serde_json::from_value::<CheckResult>(k.clone()) else {
+        return serde_json::json!({"id": k["id"], "status": "FAIL", "computed": "-", "reference": "-",
+            "error": "-", "message": "this check in results.json does not read back: write it again with impact verify"});
     };
+    let row = CheckRow::of(&typed);
     serde_json::json!({
-        "id": k["id"], "title": k["title"], "status": check_label(k),
-        "computed": fmt(get_f(&k["computed"])), "reference": fmt(get_f(&k["reference"])),
-        "compare": compare, "kind": k["reference_kind"], "source": k["reference_source"],
-        "error": error_cell(k), "tolerance": k["tolerance"], "reason": k["tolerance_reason"],
-        "message": k["message"], "known": k["known_failure"],
+        "id": typed.id, "title": typed.title, "status": row.verdict.label(),
+        "computed": row.computed, "reference": row.reference,
+        "kind": typed.reference_kind, "source": typed.reference_source,
+        "error": row.error, "tolerance": row.tolerance, "reason": typed.tolerance_reason,
+        "message": typed.message, "known": typed.known_failure,
     })
 }
 
@@ -445,53 +445,23 @@ fn paper_tables(
     (table1, table2)
 }
 
-/// A check's status as the report shows it: `FAIL*` for a declared known failure (amber),
-/// `XPASS` for a known failure that passes, else the status.
-fn check_label(k: &serde_json::Value) -> &'static str {
-    let known = !k["known_failure"].is_null();
-    match (k["status"].as_str(), known) {
-        (Some("FAIL"), true) => "FAIL*",
-        (Some("FAIL"), false) => "FAIL",
-        (Some("OK"), true) => "XPASS",
-        (Some("OK"), false) => "OK",
-        _ => "SKIP",
-    }
-}
-
-/// A case's status: the worst of its checks' (FAIL, XPASS, FAIL*, OK, then SKIP).
+/// A case's status: the worst of its checks' verdicts (FAIL, XPASS, FAIL*, OK, then SKIP).
 fn case_label(checks: &[serde_json::Value]) -> &'static str {
-    let labels: Vec<&str> = checks.iter().map(check_label).collect();
-    ["FAIL", "XPASS", "FAIL*", "OK"]
-        .into_iter()
-        .find(|l| labels.contains(l))
-        .unwrap_or("SKIP")
-}
-
-/// The error column: the error (relative or absolute) of a two-sided check; for a one-sided
-/// bound the margin to the bound, bound minus computed for `<=` and computed minus bound for
-/// `>=` (positive: inside), since an "error" against a bound reads as a miss.
-fn error_cell(k: &serde_json::Value) -> String {
-    let (computed, bound) = (get_f(&k["computed"]), get_f(&k["reference"]));
-    let margin = match (k["compare"].as_str(), computed, bound) {
-        (Some("at_most"), Some(c), Some(b)) => Some(b - c),
-        (Some("at_least"), Some(c), Some(b)) => Some(c - b),
-        _ => None,
-    };
-    if let Some(m) = margin {
-        return format!("margin {}", fmt(Some(m)));
-    }
-    match get_f(&k["error"]) {
-        Some(e) => format!(
-            "{}{}",
-            fmt(Some(e)),
-            if k["error_kind"] == "relative" {
-                " rel"
-            } else {
-                ""
-            }
-        ),
-        None => "-".into(),
-    }
+    let verdicts: Vec<Verdict> = checks
+        .iter()
+        .filter_map(|k| serde_json::from_value::<CheckResult>(k.clone()).ok())
+        .map(|k| Verdict::of_check(&k))
+        .collect();
+    [
+        Verdict::Fail,
+        Verdict::UnexpectedPass,
+        Verdict::KnownFail,
+        Verdict::Ok,
+    ]
+    .into_iter()
+    .find(|v| verdicts.contains(v))
+    .unwrap_or(Verdict::Skip)
+    .label()
 }
 
 #[cfg(test)]
@@ -502,14 +472,17 @@ mod label_tests {
     use serde_json::json;
 
     fn check(status: &str, known: bool) -> serde_json::Value {
-        json!({"status": status, "known_failure": if known { json!("why") } else { json!(null) }})
+        json!({"id": "c", "title": "t", "status": status, "computed": 1.0, "reference": 1.0,
+               "error": 0.0, "error_kind": "absolute", "compare": "within", "tolerance": "abs 1e-3",
+               "tolerance_reason": "r", "reference_kind": "analytical", "reference_source": "s",
+               "message": "", "known_failure": if known { json!("why") } else { json!(null) }})
     }
 
     #[test]
     fn known_failures_read_fail_star_and_the_worst_check_sets_the_case() {
-        assert_eq!(check_label(&check("FAIL", true)), "FAIL*");
-        assert_eq!(check_label(&check("FAIL", false)), "FAIL");
-        assert_eq!(check_label(&check("OK", true)), "XPASS");
+        assert_eq!(check_row(&check("FAIL", true))["status"], "FAIL*");
+        assert_eq!(check_row(&check("FAIL", false))["status"], "FAIL");
+        assert_eq!(check_row(&check("OK", true))["status"], "XPASS");
         let (ok, star, fail) = (
             check("OK", false),
             check("FAIL", true),
@@ -523,17 +496,13 @@ mod label_tests {
 
     #[test]
     fn one_sided_checks_show_the_margin_not_an_error() {
-        let at_most = json!({"compare": "at_most", "computed": 1.0e-7, "reference": 1.0e-6,
-                             "error": 68.0, "error_kind": "absolute"});
-        assert_eq!(
-            error_cell(&at_most),
-            format!("margin {}", fmt(Some(9.0e-7)))
-        );
-        let at_least = json!({"compare": "at_least", "computed": 3.0, "reference": 5.0});
-        assert_eq!(error_cell(&at_least), format!("margin {}", fmt(Some(-2.0))));
-        let within = json!({"compare": "within", "computed": 1.1, "reference": 1.0,
-                            "error": 0.1, "error_kind": "relative"});
-        assert_eq!(error_cell(&within), format!("{} rel", fmt(Some(0.1))));
+        let mut at_most = check("OK", false);
+        at_most["compare"] = json!("at_most");
+        (at_most["computed"], at_most["reference"], at_most["error"]) =
+            (json!(1.0e-7), json!(1.0e-6), json!(68.0));
+        let row = check_row(&at_most);
+        assert_eq!(row["error"], format!("margin {}", fmt(Some(9.0e-7))));
+        assert_eq!(row["reference"], format!("<= {}", fmt(Some(1.0e-6))));
     }
 
     #[test]

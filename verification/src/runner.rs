@@ -17,6 +17,7 @@ use crate::check::{self, CheckResult, Context, Status};
 use crate::jobs::{self, Job, JobResult};
 use crate::verdict::{Tally, Verdict};
 
+pub use crate::check_row::num;
 pub use crate::repo::Repo;
 
 #[derive(Debug, Clone)]
@@ -475,7 +476,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         computed: None,
         reference: None,
         error: None,
-        error_kind: "absolute",
+        error_kind: crate::check::ErrorKind::Absolute,
         compare: crate::case::Compare::Within,
         tolerance: "-".into(),
         tolerance_reason: "a case that does not load cannot be checked".into(),
@@ -665,22 +666,6 @@ fn run_reports(results: &BTreeMap<String, JobResult>) -> RunReports {
     (modelling, metrics, job_errors)
 }
 
-/// Compact number for the matrix.
-pub fn num(x: Option<f64>) -> String {
-    match x {
-        None => "-".into(),
-        Some(v) if v == 0.0 => "0".into(),
-        Some(v) if v.is_infinite() => {
-            if v > 0.0 {
-                "inf".into()
-            } else {
-                "-inf".into()
-            }
-        }
-        Some(v) => format!("{v:.6e}"),
-    }
-}
-
 /// The matrix as text: one row per check.
 pub fn matrix_text(m: &Matrix) -> String {
     let mut rows = vec![[
@@ -690,37 +675,20 @@ pub fn matrix_text(m: &Matrix) -> String {
         "status".into(),
         "computed".into(),
         "reference".into(),
-        "error".into(),
+        "error (one-sided: margin)".into(),
         "tolerance".into(),
     ]];
     for (c, k) in m.all_checks() {
-        let error = match k.error {
-            Some(e) => format!(
-                "{}{}",
-                num(Some(e)),
-                if k.error_kind == "relative" {
-                    " rel"
-                } else {
-                    ""
-                }
-            ),
-            None => "-".into(),
-        };
-        let cmp = match k.compare {
-            crate::case::Compare::Within => "",
-            crate::case::Compare::AtMost => "<= ",
-            crate::case::Compare::AtLeast => ">= ",
-        };
-        let status = Verdict::of_check(k).label().to_string();
+        let row = crate::check_row::CheckRow::of(k);
         rows.push([
             c.suite.clone(),
             c.case.clone(),
             k.id.clone(),
-            status,
-            num(k.computed),
-            format!("{cmp}{}", num(k.reference)),
-            error,
-            k.tolerance.clone(),
+            row.verdict.label().to_string(),
+            row.computed,
+            row.reference,
+            row.error,
+            row.tolerance,
         ]);
     }
     let mut widths = [0usize; 8];
@@ -810,12 +778,13 @@ pub fn junit_xml(m: &Matrix) -> Result<String, String> {
     for c in &m.cases {
         let mut suite = TestSuite::new(format!("{}/{}", c.suite, c.case));
         for k in &c.checks {
+            let row = crate::check_row::CheckRow::of(k);
             let detail = format!(
                 "computed {} reference {} ({}) error {} tolerance {} ({})",
-                num(k.computed),
-                num(k.reference),
+                row.computed,
+                row.reference,
                 k.reference_kind,
-                num(k.error),
+                row.error,
                 k.tolerance,
                 k.tolerance_reason
             );
