@@ -24,6 +24,7 @@ use std::collections::BTreeMap;
 use impact_solver::History;
 use serde_json::Value;
 
+use super::with_history;
 use super::{param, plastic_material, PlasticMaterial};
 use crate::data::RunData;
 
@@ -255,11 +256,7 @@ pub fn plastic_bar_wave(p: &Params) -> Result<RunData, String> {
         "max_energy_balance_error".into(),
         o.summary.max_energy_balance_error,
     );
-    Ok(RunData {
-        metrics,
-        histories: BTreeMap::from([(String::new(), o.history)]),
-        ..Default::default()
-    })
+    Ok(with_history(metrics, o.history))
 }
 
 #[cfg(test)]

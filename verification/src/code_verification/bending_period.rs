@@ -19,6 +19,7 @@ use impact_analytical::timoshenko_modal::{Ends, TimoshenkoBeam};
 use serde_json::Value;
 
 use super::param;
+use super::with_history;
 use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -61,39 +62,66 @@ pub fn peak_omega(t: &[f64], x: &[f64], guess: f64) -> f64 {
     0.5 * (a + b)
 }
 
-pub fn bending_period(p: &Params) -> Result<RunData, String> {
-    let (length, thickness) = (param(p, "length", 0.2)?, param(p, "thickness", 0.02)?);
-    let (e, nu, rho) = (
+/// The clamped elastic plate (`length`, `thickness`, `width` m; steel by default; the
+/// solver's modulus `model_youngs_modulus` when a negative control sets it), half model
+/// `nx` x `ny` of `element`, CFL 0.9, under `force` (N) on the top mid-span node for
+/// `duration` s, run to `end` s with a history row every `every` s.
+pub(super) fn plate_scene(
+    p: &Params,
+    duration: f64,
+    end: f64,
+    every: f64,
+) -> Result<impact_solver::Scene, String> {
+    let text = format!(
+        "plate: {{length: {}, width: {}, thickness: {}}}\n\
+         material: {{density: {}, youngs_modulus: {}, poisson_ratio: {}}}\n\
+         mesh: {{nx: {}, ny: {}, element: {}, model: half}}\n\
+         load: {{pulse: {{force: {}, duration: {duration}}}}}\n\
+         time: {{end: {end}, dt: {{cfl: 0.9}}}}\n\
+         output: {{every: {every}}}\n",
+        param(p, "length", 0.2)?,
+        param(p, "width", 1.0)?,
+        param(p, "thickness", 0.02)?,
+        param(p, "density", 7850.0)?,
+        param(
+            p,
+            "model_youngs_modulus",
+            param(p, "youngs_modulus", 207e9)?
+        )?,
+        param(p, "poisson_ratio", 0.3)?,
+        param(p, "nx", 80.0)? as usize,
+        param(p, "ny", 16.0)? as usize,
+        p.get("element").and_then(Value::as_str).unwrap_or("q4-sri"),
+        param(p, "force", 1000.0)?,
+    );
+    impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plate scene)"))
+        .map_err(|e| e.to_string())
+}
+
+/// The plate's Timoshenko first period (clamped-clamped, plane strain, k = 5/6) and
+/// Euler-Bernoulli's, s.
+pub(super) fn beam_periods(p: &Params) -> Result<(f64, f64), String> {
+    let beam = ClampedBeam::new(
+        param(p, "length", 0.2)?,
+        1.0,
+        param(p, "thickness", 0.02)?,
         param(p, "youngs_modulus", 207e9)?,
         param(p, "poisson_ratio", 0.3)?,
-        param(p, "density", 7850.0)?,
-    );
-    let beam = ClampedBeam::new(length, 1.0, thickness, e, nu)?;
+    )?;
+    let rho = param(p, "density", 7850.0)?;
     let eb_period = ModalBeam::new(&beam, rho, 1)?.first_period_s();
     let eb_omega = 2.0 * std::f64::consts::PI / eb_period;
     let timo = TimoshenkoBeam::new(&beam, rho, 5.0 / 6.0)?;
     let timo_omega = timo.first_omega(Ends::Clamped, eb_omega)?;
-    let timo_period = 2.0 * std::f64::consts::PI / timo_omega;
-    // The solver's material (a negative control may change it) and the run.
-    let model_e = param(p, "model_youngs_modulus", e)?;
+    Ok((2.0 * std::f64::consts::PI / timo_omega, eb_period))
+}
+
+pub fn bending_period(p: &Params) -> Result<RunData, String> {
+    let (timo_period, eb_period) = beam_periods(p)?;
+    let timo_omega = 2.0 * std::f64::consts::PI / timo_period;
     let pulse = param(p, "pulse", 5.0e-6)?;
-    let periods = param(p, "periods", 12.0)?;
-    let end = pulse + periods * timo_period;
-    let text = format!(
-        "plate: {{length: {length}, width: 1.0, thickness: {thickness}}}\n\
-         material: {{density: {rho}, youngs_modulus: {model_e}, poisson_ratio: {nu}}}\n\
-         mesh: {{nx: {nx}, ny: {ny}, element: {el}, model: half}}\n\
-         load: {{pulse: {{force: 1000.0, duration: {pulse}}}}}\n\
-         time: {{end: {end}, dt: {{cfl: 0.9}}}}\n\
-         output: {{every: {every}}}\n",
-        nx = param(p, "nx", 80.0)? as usize,
-        ny = param(p, "ny", 16.0)? as usize,
-        el = p.get("element").and_then(Value::as_str).unwrap_or("q4-sri"),
-        every = timo_period / 200.0,
-    );
-    let scene =
-        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin bending-period)"))
-            .map_err(|e| e.to_string())?;
+    let end = pulse + param(p, "periods", 12.0)? * timo_period;
+    let scene = plate_scene(p, pulse, end, timo_period / 200.0)?;
     let o =
         impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
     let h = &o.history;
@@ -113,11 +141,7 @@ pub fn bending_period(p: &Params) -> Result<RunData, String> {
     m.insert("euler_bernoulli_period_s".into(), eb_period);
     m.insert("ratio_to_timoshenko".into(), period / timo_period);
     m.insert("ratio_to_euler_bernoulli".into(), period / eb_period);
-    Ok(RunData {
-        metrics: m,
-        histories: BTreeMap::from([(String::new(), o.history)]),
-        ..Default::default()
-    })
+    Ok(with_history(m, o.history))
 }
 
 #[cfg(test)]

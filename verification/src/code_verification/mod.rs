@@ -15,6 +15,7 @@ pub mod plastic_path;
 pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
+pub mod static_pulse;
 
 use std::collections::BTreeMap;
 
@@ -23,7 +24,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 10] = [
+pub const NAMES: [&str; 11] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -34,6 +35,7 @@ pub const NAMES: [&str; 10] = [
     "plastic-bar-wave",
     "static-collapse",
     "bending-period",
+    "static-pulse",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -49,8 +51,21 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "plastic-bar-wave" => bar_wave::plastic_bar_wave(p),
         "static-collapse" => collapse::static_collapse(p),
         "bending-period" => bending_period::bending_period(p),
+        "static-pulse" => static_pulse::static_pulse(p),
         _ => return None,
     })
+}
+
+/// A builtin's result: its metrics and its one history (the case's plots read it as "").
+pub(crate) fn with_history(
+    metrics: BTreeMap<String, f64>,
+    history: impact_solver::History,
+) -> RunData {
+    RunData {
+        metrics,
+        histories: BTreeMap::from([(String::new(), history)]),
+        ..Default::default()
+    }
 }
 
 /// A number parameter (or its default).
