@@ -114,8 +114,15 @@ pub trait Formulation: Sync {
     /// Whether an elastic run is faster with precomputed element stiffness matrices than
     /// with the stress path (measured by `impact-bench throughput`: not for one point).
     const STIFFNESS_MATRIX_PAYS: bool = true;
-    fn n_elements(&self) -> usize;
-    fn nodes(&self, e: usize) -> [u32; 4];
+    /// The four node numbers of every element, counter-clockwise.
+    fn connectivity(&self) -> &[[u32; 4]];
+    fn n_elements(&self) -> usize {
+        self.connectivity().len()
+    }
+    #[inline(always)]
+    fn nodes(&self, e: usize) -> [u32; 4] {
+        self.connectivity()[e]
+    }
     /// Strain at each integration point (the first `POINTS` entries are used).
     fn strains(&self, e: usize, u: &ElementVector) -> [Strain; 4];
     /// Integration weight of each point: det J * W (m^3).
@@ -238,12 +245,8 @@ impl FullQ4 {
 
 impl Formulation for FullQ4 {
     const POINTS: usize = 4;
-    fn n_elements(&self) -> usize {
-        self.nodes.len()
-    }
-    #[inline(always)]
-    fn nodes(&self, e: usize) -> [u32; 4] {
-        self.nodes[e]
+    fn connectivity(&self) -> &[[u32; 4]] {
+        &self.nodes
     }
     #[inline(always)]
     fn strains(&self, e: usize, u: &ElementVector) -> [Strain; 4] {
@@ -294,12 +297,8 @@ impl SelectiveQ4 {
 
 impl Formulation for SelectiveQ4 {
     const POINTS: usize = 4;
-    fn n_elements(&self) -> usize {
-        self.full.n_elements()
-    }
-    #[inline(always)]
-    fn nodes(&self, e: usize) -> [u32; 4] {
-        self.full.nodes(e)
+    fn connectivity(&self) -> &[[u32; 4]] {
+        self.full.connectivity()
     }
     /// B-bar strain: the point's volumetric part replaced by the centroid's, `zz` carrying
     /// the shift so that the trace is the centroid dilatation.
@@ -402,12 +401,8 @@ impl OnePointQ4 {
 impl Formulation for OnePointQ4 {
     const POINTS: usize = 1;
     const STIFFNESS_MATRIX_PAYS: bool = false;
-    fn n_elements(&self) -> usize {
-        self.nodes.len()
-    }
-    #[inline(always)]
-    fn nodes(&self, e: usize) -> [u32; 4] {
-        self.nodes[e]
+    fn connectivity(&self) -> &[[u32; 4]] {
+        &self.nodes
     }
     #[inline(always)]
     fn strains(&self, e: usize, u: &ElementVector) -> [Strain; 4] {

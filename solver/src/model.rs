@@ -97,14 +97,28 @@ pub fn build<U: UseModel>(
         scene.mesh.hourglass,
         &elastic,
     )?;
-    with_formulation!(formulation, f => with_material(f, scene, mesh, kernel, user))
+    let request = Request {
+        scene,
+        mesh,
+        kernel,
+    };
+    with_formulation!(formulation, f => with_material(f, request, user))
+}
+
+/// What [`build`] was asked for, handed on to the material stage.
+struct Request<'a> {
+    scene: &'a Scene,
+    mesh: &'a PlateMesh,
+    kernel: Kernel,
 }
 
 fn with_material<F: Formulation, U: UseModel>(
     formulation: F,
-    scene: &Scene,
-    mesh: &PlateMesh,
-    kernel: Kernel,
+    Request {
+        scene,
+        mesh,
+        kernel,
+    }: Request,
     user: U,
 ) -> Result<U::Output> {
     let m = &scene.material;

@@ -15,23 +15,30 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 static COUNTER: AtomicUsize = AtomicUsize::new(0);
 
+/// A check of the law's round-trip error against `value` within `absolute`.
+fn round_trip_check(id: &str, value: f64, source: &str, absolute: &str, reason: &str) -> String {
+    format!(
+        "\n  - id: {id}\n    title: check {id}\n    measure: {{metric: round_trip_max_rel}}\n    \
+         reference: {{kind: analytical, value: {value:?}, source: \"{source}\"}}\n    \
+         tolerance: {{absolute: {absolute}, reason: \"{reason}\"}}\n"
+    )
+}
+
 /// A passing check (round-off of the law's inverse is far below 1e-9).
-const PASSES: &str = r#"
-  - id: passes
-    title: a passing check
-    measure: {metric: round_trip_max_rel}
-    reference: {kind: analytical, value: 0.0, source: "closed form"}
-    tolerance: {absolute: 1.0e-9, reason: "round-off"}
-"#;
+fn passes() -> String {
+    round_trip_check("passes", 0.0, "closed form", "1.0e-9", "round-off")
+}
 
 /// A failing check (the round-trip error is not 1).
-const FAILS: &str = r#"
-  - id: fails
-    title: a failing check
-    measure: {metric: round_trip_max_rel}
-    reference: {kind: analytical, value: 1.0, source: "deliberately wrong"}
-    tolerance: {absolute: 1.0e-3, reason: "a test of the exit status"}
-"#;
+fn fails() -> String {
+    round_trip_check(
+        "fails",
+        1.0,
+        "deliberately wrong",
+        "1.0e-3",
+        "a test of the exit status",
+    )
+}
 
 fn known(check: &str) -> String {
     format!("{}    known_failure: \"declared for the test\"\n", check)
@@ -81,7 +88,7 @@ fn verify_in(root: &std::path::Path, extra: &[&str]) -> (i32, String, String) {
 
 #[test]
 fn only_declared_known_failures_exit_0() {
-    let (code, stdout, _) = verify(&format!("{PASSES}{}", known(FAILS)), &[]);
+    let (code, stdout, _) = verify(&format!("{}{}", passes(), known(&fails())), &[]);
     assert_eq!(code, 0, "{stdout}");
     assert!(
         stdout.contains("1 OK, 1 known FAIL, 0 unexpected FAIL, 0 XPASS, 0 SKIP"),
@@ -94,8 +101,10 @@ fn only_declared_known_failures_exit_0() {
 fn an_undeclared_failure_exits_1() {
     let (code, stdout, _) = verify(
         &format!(
-            "{PASSES}{}{FAILS}",
-            known(FAILS).replace("id: fails", "id: fails-known")
+            "{}{}{}",
+            passes(),
+            known(&fails()).replace("id: fails", "id: fails-known"),
+            fails()
         ),
         &[],
     );
@@ -108,7 +117,7 @@ fn an_undeclared_failure_exits_1() {
 
 #[test]
 fn a_known_failure_that_passes_exits_1() {
-    let (code, stdout, _) = verify(&known(PASSES), &[]);
+    let (code, stdout, _) = verify(&known(&passes()), &[]);
     assert_eq!(code, 1, "{stdout}");
     assert!(stdout.contains("XPASS"), "{stdout}");
     assert!(
@@ -119,7 +128,7 @@ fn a_known_failure_that_passes_exits_1() {
 
 #[test]
 fn a_broken_case_is_a_fail_row_and_the_other_suites_run() {
-    let root = scratch(PASSES);
+    let root = scratch(&passes());
     let broken = root.join("verification/cases/another/broken");
     std::fs::create_dir_all(&broken).unwrap();
     std::fs::write(broken.join("case.yaml"), "id: [not, a, string]\n").unwrap();
@@ -144,13 +153,13 @@ fn a_broken_case_is_a_fail_row_and_the_other_suites_run() {
 
 #[test]
 fn bad_usage_exits_2() {
-    let (code, _, stderr) = verify(PASSES, &["--no-such-flag"]);
+    let (code, _, stderr) = verify(&passes(), &["--no-such-flag"]);
     assert_eq!(code, 2, "{stderr}");
 }
 
 #[test]
 fn each_case_is_announced_as_it_finishes_with_its_verdicts_then_a_total() {
-    let root = scratch(&format!("{PASSES}{}", known(FAILS)));
+    let root = scratch(&format!("{}{}", passes(), known(&fails())));
     // A second case in another suite whose one check fails (a new failure).
     let other = root.join("verification/cases/other/case");
     std::fs::create_dir_all(&other).unwrap();
@@ -158,7 +167,7 @@ fn each_case_is_announced_as_it_finishes_with_its_verdicts_then_a_total() {
         .unwrap()
         .replace("id: c1", "id: c2")
         .replace("REQ-1", "REQ-2");
-    let yaml = format!("{}{FAILS}", &yaml[..yaml.find("checks:").unwrap() + 7]);
+    let yaml = format!("{}{}", &yaml[..yaml.find("checks:").unwrap() + 7], fails());
     std::fs::write(other.join("case.yaml"), yaml).unwrap();
     let (code, stdout, stderr) = verify_in(&root, &[]);
     assert_eq!(code, 1, "{stdout}{stderr}");
