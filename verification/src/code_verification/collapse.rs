@@ -20,6 +20,7 @@
 use std::collections::BTreeMap;
 
 use impact_analytical::beam::ClampedBeam;
+use impact_analytical::modal_beam::ModalBeam;
 use impact_solver::element::Formulation;
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::{Elastic, VonMises};
@@ -101,36 +102,41 @@ fn punch_dofs(plate: &Plate, mesh: &PlateMesh) -> Vec<usize> {
         .collect()
 }
 
-/// The punch's prescribed downward displacement at `t`, m: velocity `U / T` reached by a
-/// half-cosine over the first `T / 10`, so that the start excites little vibration.
-fn punch_displacement(t: f64, total: f64, duration: f64) -> f64 {
-    let rise = 0.1 * duration;
-    let speed = total / (duration - 0.5 * rise);
-    if t < rise {
-        let w = std::f64::consts::PI / rise;
-        speed * (0.5 * t - 0.5 * (w * t).sin() / w)
-    } else {
-        speed * (t - 0.5 * rise)
+/// A prescribed displacement `U(t) c_d` on `dofs` (dof, component `c_d` of the unit
+/// direction), `U` rising to `total` (m) over `duration` (s) at constant speed after a
+/// half-cosine start over the first tenth (little vibration excited).
+pub(super) struct Push {
+    pub dofs: Vec<(usize, f64)>,
+    pub total: f64,
+    pub duration: f64,
+}
+
+impl Push {
+    fn displacement(&self, t: f64) -> f64 {
+        let rise = 0.1 * self.duration;
+        let speed = self.total / (self.duration - 0.5 * rise);
+        if t < rise {
+            let w = std::f64::consts::PI / rise;
+            speed * (0.5 * t - 0.5 * (w * t).sin() / w)
+        } else {
+            speed * (t.min(self.duration) - 0.5 * rise)
+        }
     }
 }
 
-/// The march: rows (time s, punch force N per metre of width on the whole plate, punch
-/// displacement m, positive down).
-fn march<F: Formulation>(
-    plate: &Plate,
+/// The solver's plate model on `mesh` (its fixed dofs held) marched by central differences
+/// at 0.9 of the stable step while `push` moves its dofs: rows (time s, the reaction
+/// `sum_d c_d f_int_d` (N per metre of width on the modelled part, work-conjugate to U), U m).
+pub(super) fn march<F: Formulation>(
     mesh: &PlateMesh,
     f: F,
-    model_material: VonMises,
+    material: VonMises,
+    density: f64,
+    push: &Push,
 ) -> Vec<[f64; 3]> {
-    let rho = plate.material.density;
-    let mut model = PlateModel::new(f, model_material, mesh, rho);
-    let dt = 0.9 * model.critical_time_step(rho);
-    let beam = plate.beam().expect("a valid beam");
-    let modal = impact_analytical::modal_beam::ModalBeam::new(&beam, rho, 1).expect("modes");
-    let duration = plate.ramp_periods * modal.first_period_s();
-    let total = plate.overdrive * plate.limit_load() / plate.timoshenko_slope();
-    let steps = (duration / dt).ceil() as usize;
-    let punch = punch_dofs(plate, mesh);
+    let mut model = PlateModel::new(f, material, mesh, density);
+    let dt = 0.9 * model.critical_time_step(density);
+    let steps = (push.duration / dt).ceil() as usize;
     let ndof = 2 * mesh.mesh.n_nodes();
     let (mut u, mut v, mut f_int) = (vec![0.0; ndof], vec![0.0; ndof], vec![0.0; ndof]);
     let every = (steps / 2000).max(1);
@@ -139,26 +145,24 @@ fn march<F: Formulation>(
         let t = n as f64 * dt;
         model.internal_forces(&u, &mut f_int);
         if n % every == 0 {
-            // The reaction on the punch: the internal forces on its dofs (the half model's,
-            // doubled), positive down.
-            let force: f64 = punch.iter().map(|&d| f_int[d]).sum::<f64>();
-            rows.push([t, -2.0 * force, -u[punch[punch.len() - 1]]]);
+            let reaction: f64 = push.dofs.iter().map(|&(d, c)| c * f_int[d]).sum();
+            rows.push([t, reaction, push.displacement(t)]);
         }
         let half = if n == 0 { 0.5 } else { 1.0 };
         for d in 0..ndof {
             v[d] -= half * dt * f_int[d] * model.inverse_mass[d];
             u[d] += dt * v[d];
         }
-        let down = punch_displacement(t + dt, total, duration);
-        for &d in &punch {
-            u[d] = -down;
+        let now = push.displacement(t + dt);
+        for &(d, c) in &push.dofs {
+            u[d] = c * now;
         }
     }
     rows
 }
 
-/// Mean punch force over the last fifth of the push (the plateau of perfect plasticity), N/m.
-fn plateau(rows: &[[f64; 3]]) -> f64 {
+/// Mean reaction over the last fifth of the push (the plateau of perfect plasticity).
+pub(super) fn plateau(rows: &[[f64; 3]]) -> f64 {
     let last = rows[rows.len() - 1][2];
     let tail: Vec<f64> = rows
         .iter()
@@ -184,7 +188,8 @@ fn model_material(plate: &Plate, p: &Params) -> Result<VonMises, String> {
     .ok_or_else(|| "static-collapse: not a plastic material".to_string())
 }
 
-/// One plate's push: its rows and plateau over its limit load.
+/// One plate's push: its rows (the punch force on the whole plate) and plateau over its
+/// limit load.
 fn push(plate: &Plate, nx: usize, ny: usize, p: &Params) -> Result<(Vec<[f64; 3]>, f64), String> {
     let mesh = half_mesh(plate, nx, ny)?;
     let elastic = Elastic::new(
@@ -193,8 +198,22 @@ fn push(plate: &Plate, nx: usize, ny: usize, p: &Params) -> Result<(Vec<[f64; 3]
     );
     let any = AnyFormulation::new(element(p)?, &mesh.mesh, 1.0, 0.05, &elastic)
         .map_err(|e| e.to_string())?;
+    let rho = plate.material.density;
+    let modal = ModalBeam::new(&plate.beam()?, rho, 1)?;
+    // Downward: the punch force (positive down) is -sum f_int, doubled for the whole plate.
+    let push = Push {
+        dofs: punch_dofs(plate, &mesh)
+            .into_iter()
+            .map(|d| (d, -1.0))
+            .collect(),
+        total: plate.overdrive * plate.limit_load() / plate.timoshenko_slope(),
+        duration: plate.ramp_periods * modal.first_period_s(),
+    };
     let vm = model_material(plate, p)?;
-    let rows = impact_solver::with_formulation!(any, f => march(plate, &mesh, f, vm));
+    let mut rows = impact_solver::with_formulation!(any, f => march(&mesh, f, vm, rho, &push));
+    for r in &mut rows {
+        r[1] *= 2.0;
+    }
     let ratio = plateau(&rows) / plate.limit_load();
     Ok((rows, ratio))
 }

@@ -16,6 +16,7 @@ pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
 pub mod static_pulse;
+pub mod thick_cylinder;
 
 use std::collections::BTreeMap;
 
@@ -24,7 +25,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 11] = [
+pub const NAMES: [&str; 12] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -36,6 +37,7 @@ pub const NAMES: [&str; 11] = [
     "static-collapse",
     "bending-period",
     "static-pulse",
+    "thick-cylinder",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -52,6 +54,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "static-collapse" => collapse::static_collapse(p),
         "bending-period" => bending_period::bending_period(p),
         "static-pulse" => static_pulse::static_pulse(p),
+        "thick-cylinder" => thick_cylinder::thick_cylinder(p),
         _ => return None,
     })
 }
