@@ -271,15 +271,33 @@ fn hardening_text(h: &impact_solver::scene::Hardening) -> String {
 
 /// The modelling of a run, in words, for the report.
 pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String, String> {
-    let mut m = BTreeMap::new();
-    let p = &scene.plate;
-    m.insert(
-        "plate".into(),
-        format!(
-            "L = {} m, W = {} m, h = {} m",
-            p.length, p.width, p.thickness
-        ),
+    let dt = format!(
+        "{:.4e} s ({:.3} of stable {:.4e} s)",
+        s.dt, s.cfl, s.dt_critical
     );
+    [
+        ("plate", plate_text(scene)),
+        ("material", material_text(scene)),
+        ("mesh", mesh_text(scene)),
+        ("dt", dt),
+        ("contact law", s.contact_law.clone()),
+        ("load", load_text(&scene.load)),
+        ("end", end_text(&scene.time.end)),
+    ]
+    .into_iter()
+    .map(|(key, text)| (key.to_string(), text))
+    .collect()
+}
+
+fn plate_text(scene: &Scene) -> String {
+    let p = &scene.plate;
+    format!(
+        "L = {} m, W = {} m, h = {} m",
+        p.length, p.width, p.thickness
+    )
+}
+
+fn material_text(scene: &Scene) -> String {
     let mat = &scene.material;
     let plastic = match &mat.plasticity {
         None => "elastic".to_string(),
@@ -289,67 +307,55 @@ pub fn scene_info(scene: &Scene, s: &impact_solver::Summary) -> BTreeMap<String,
             hardening_text(&pl.hardening)
         ),
     };
-    m.insert(
-        "material".into(),
-        format!(
-            "rho = {} kg/m3, E = {:e} Pa, nu = {}, {plastic}",
-            mat.density, mat.youngs_modulus, mat.poisson_ratio
-        ),
-    );
+    format!(
+        "rho = {} kg/m3, E = {:e} Pa, nu = {}, {plastic}",
+        mat.density, mat.youngs_modulus, mat.poisson_ratio
+    )
+}
+
+fn mesh_text(scene: &Scene) -> String {
     let ms = &scene.mesh;
-    m.insert(
-        "mesh".into(),
-        format!(
-            "{} x {} {}, {} model, grading {}",
-            ms.nx,
-            ms.ny,
-            ms.element.name(),
-            match ms.model {
-                Model::Half => "half",
-                Model::Full => "full",
-            },
-            ms.grading
+    let model = match ms.model {
+        Model::Half => "half",
+        Model::Full => "full",
+    };
+    format!(
+        "{} x {} {}, {model} model, grading {}",
+        ms.nx,
+        ms.ny,
+        ms.element.name(),
+        ms.grading
+    )
+}
+
+fn load_text(load: &Load) -> String {
+    match load {
+        Load::Pulse(pu) => format!(
+            "rectangular pulse {} N for {} s on the top mid-span node",
+            pu.force, pu.duration
         ),
-    );
-    m.insert(
-        "dt".into(),
-        format!(
-            "{:.4e} s ({:.3} of stable {:.4e} s)",
-            s.dt, s.cfl, s.dt_critical
+        Load::Impactor(i) => format!(
+            "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, datum {}, force on {}",
+            i.mass,
+            i.velocity,
+            i.nose_radius,
+            node_name(i.indentation_datum),
+            node_name(i.force_node)
         ),
-    );
-    m.insert("contact law".into(), s.contact_law.clone());
-    m.insert(
-        "load".into(),
-        match &scene.load {
-            Load::Pulse(pu) => format!(
-                "rectangular pulse {} N for {} s on the top mid-span node",
-                pu.force, pu.duration
-            ),
-            Load::Impactor(i) => format!(
-                "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, datum {}, force on {}",
-                i.mass,
-                i.velocity,
-                i.nose_radius,
-                node_name(i.indentation_datum),
-                node_name(i.force_node)
-            ),
-            Load::Traction(t) => format!(
-                "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",
-                t.normal, t.shear, t.duration
-            ),
-        },
-    );
-    m.insert(
-        "end".into(),
-        match scene.time.end {
-            End::At(t) => format!("t = {t} s"),
-            End::AfterContact { after, limit } => {
-                format!("{after} s after the last contact (limit {limit} s)")
-            }
-        },
-    );
-    m
+        Load::Traction(t) => format!(
+            "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",
+            t.normal, t.shear, t.duration
+        ),
+    }
+}
+
+fn end_text(end: &End) -> String {
+    match *end {
+        End::At(t) => format!("t = {t} s"),
+        End::AfterContact { after, limit } => {
+            format!("{after} s after the last contact (limit {limit} s)")
+        }
+    }
 }
 
 fn node_name(n: MidSpanNode) -> &'static str {
