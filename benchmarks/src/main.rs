@@ -2,6 +2,8 @@
 //! tests of numerical stability. Results (CSV, SVG, Markdown) go to `--out`.
 
 mod common;
+mod meta;
+mod pareto;
 mod stability;
 mod throughput;
 mod work_precision;
@@ -38,14 +40,31 @@ enum Command {
 fn main() -> anyhow::Result<()> {
     let cli = Cli::parse();
     std::fs::create_dir_all(&cli.out)?;
+    let (q, out) = (cli.quick, &cli.out);
+    let wp_sizes = work_precision::Sizes::new(q).describe();
     match cli.command {
-        Command::WorkPrecision => work_precision::run(&cli.out, cli.quick),
-        Command::Throughput => throughput::run(&cli.out, cli.quick),
-        Command::Stability => stability::run(&cli.out, cli.quick),
+        Command::WorkPrecision => work_precision::run(out, q)?,
+        Command::Throughput => throughput::run(out, q)?,
+        Command::Stability => stability::run(out, q)?,
         Command::All => {
-            throughput::run(&cli.out, cli.quick)?;
-            work_precision::run(&cli.out, cli.quick)?;
-            stability::run(&cli.out, cli.quick)
+            throughput::run(out, q)?;
+            work_precision::run(out, q)?;
+            stability::run(out, q)?;
         }
     }
+    let ran: &[&str] = match cli.command {
+        Command::WorkPrecision => &["work-precision"],
+        Command::Throughput => &["throughput"],
+        Command::Stability => &["stability"],
+        Command::All => &["throughput", "work-precision", "stability"],
+    };
+    for name in ran {
+        let sizes = if *name == "work-precision" {
+            Some(wp_sizes.as_str())
+        } else {
+            None
+        };
+        meta::record(out, name, q, sizes)?;
+    }
+    Ok(())
 }

@@ -16,6 +16,7 @@ use plotters::prelude::*;
 use impact_analytical::plane_wave::PlaneWave;
 
 use crate::common::{markdown_table, paper, pulse, timed, write_csv};
+use crate::pareto;
 
 const ELEMENTS: [ElementKind; 3] = [
     ElementKind::Q4Full,
@@ -154,14 +155,60 @@ fn error(problem: &Problem, run: &Outcome, reference: &Outcome) -> f64 {
     }
 }
 
+/// The sizes of a run: `--quick` (CI) or the default.
+pub struct Sizes {
+    /// Meshes (nx, ny) of the paper problems.
+    levels: &'static [(usize, usize)],
+    /// Elements through the thickness of the wave (4 x ny meshes; 80 is the wave suite's
+    /// default mesh).
+    wave_levels: &'static [usize],
+    cfls: &'static [f64],
+    /// Timed runs after the warm-up; the minimum is kept.
+    repeats: usize,
+}
+
+impl Sizes {
+    pub fn new(quick: bool) -> Sizes {
+        if quick {
+            Sizes {
+                levels: &[(10, 2), (20, 4)],
+                wave_levels: &[10, 20],
+                cfls: &[0.9],
+                repeats: 1,
+            }
+        } else {
+            Sizes {
+                levels: &[(10, 2), (20, 4), (40, 8), (80, 16)],
+                wave_levels: &[10, 20, 40, 80],
+                cfls: &[0.3, 0.6, 0.9],
+                repeats: 2,
+            }
+        }
+    }
+
+    /// For meta.json: "meshes 10x2, 20x4 (wave 4x10, 4x20); CFL 0.9; 1 timed repeat".
+    pub fn describe(&self) -> String {
+        let meshes: Vec<String> = self
+            .levels
+            .iter()
+            .map(|(x, y)| format!("{x}x{y}"))
+            .collect();
+        let wave: Vec<String> = self.wave_levels.iter().map(|y| format!("4x{y}")).collect();
+        let cfls: Vec<String> = self.cfls.iter().map(|c| c.to_string()).collect();
+        format!(
+            "meshes {} (wave {}); CFL {}; {} timed repeat{}",
+            meshes.join(", "),
+            wave.join(", "),
+            cfls.join(", "),
+            self.repeats,
+            if self.repeats == 1 { "" } else { "s" }
+        )
+    }
+}
+
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
-    let levels: &[(usize, usize)] = if quick {
-        &[(10, 2), (20, 4)]
-    } else {
-        &[(10, 2), (20, 4), (40, 8), (80, 16)]
-    };
-    let cfls: &[f64] = if quick { &[0.9] } else { &[0.3, 0.6, 0.9] };
-    let repeats = if quick { 1 } else { 2 };
+    let sizes = Sizes::new(quick);
+    let (levels, cfls, repeats) = (sizes.levels, sizes.cfls, sizes.repeats);
     let problems = [
         Problem {
             name: "impact-elastic",
@@ -226,9 +273,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
         )?;
         println!("{}: {}", p.name, pareto_summary(&rows, p.name));
     }
-    // The wave's levels: elements through the thickness (80 is the wave suite's default mesh).
-    let wave_levels: &[usize] = if quick { &[10, 20] } else { &[10, 20, 40, 80] };
-    let wave_series = wave_rows(&ELEMENTS, wave_levels, cfls, repeats, &mut rows)?;
+    let wave_series = wave_rows(&ELEMENTS, sizes.wave_levels, cfls, repeats, &mut rows)?;
     plot(
         &out.join("work-precision-wave-p.svg"),
         "wave-p",
@@ -257,26 +302,21 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
 
 /// The configurations on the Pareto front (no other is both faster and more accurate).
 fn pareto_summary(rows: &[Vec<String>], problem: &str) -> String {
-    let pts: Vec<(&Vec<String>, f64, f64)> = rows
+    let mine: Vec<&Vec<String>> = rows.iter().filter(|r| r[0] == problem).collect();
+    let points: Vec<(f64, f64)> = mine
         .iter()
-        .filter(|r| r[0] == problem)
         .map(|r| {
             let e: f64 = r[5].parse().unwrap_or(f64::INFINITY);
             let t: f64 = r[6].parse::<f64>().unwrap_or(0.0) + r[7].parse::<f64>().unwrap_or(0.0);
-            (r, e, t)
+            (e, t)
         })
         .collect();
-    let mut front: Vec<_> = pts
-        .iter()
-        .filter(|(_, e, t)| {
-            !pts.iter()
-                .any(|(_, e2, t2)| (e2 < e && t2 <= t) || (e2 <= e && t2 < t))
+    let names: Vec<String> = pareto::front(&points)
+        .into_iter()
+        .map(|i| {
+            let (r, (e, t)) = (mine[i], points[i]);
+            format!("{} {} cfl {} (error {e:.1e}, {t:.3} s)", r[1], r[2], r[3])
         })
-        .collect();
-    front.sort_by(|a, b| a.2.total_cmp(&b.2));
-    let names: Vec<String> = front
-        .iter()
-        .map(|(r, e, t)| format!("{} {} cfl {} (error {e:.1e}, {t:.3} s)", r[1], r[2], r[3]))
         .collect();
     format!("Pareto front: {}", names.join("; "))
 }
@@ -314,14 +354,16 @@ fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Resu
         .y_label_area_size(60)
         .build_cartesian_2d(
             (x0 / 1.5..x1 * 1.5).log_scale(),
-            (y0 / 1.5..y1 * 1.5).log_scale(),
+            (y0 / 1.5..y1 * 1.5)
+                .log_scale()
+                .with_key_points(log_ticks(y0 / 1.5, y1 * 1.5)),
         )?;
     chart
         .configure_mesh()
         .x_desc(xlabel)
         .y_desc("wall time, s (min of repeats)")
         .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .y_label_formatter(&|v| tick_label(*v))
         .draw()?;
     for (i, (name, points)) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
@@ -336,6 +378,16 @@ fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Resu
             });
         chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
     }
+    // The Pareto front over all configurations: fastest to most accurate.
+    let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
+    let front: Vec<(f64, f64)> = pareto::front(&points)
+        .into_iter()
+        .map(|i| points[i])
+        .collect();
+    chart
+        .draw_series(LineSeries::new(front, BLACK.stroke_width(1)))?
+        .label("Pareto front (no other is faster and more accurate)")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
@@ -344,4 +396,53 @@ fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Resu
         .draw()?;
     root.present()?;
     Ok(())
+}
+
+/// Tick positions on a log axis from `lo` to `hi`: the coarsest of 1, 1-2-5 and
+/// 1-1.5-2-3-5-7 per decade that gives at least four ticks (plotters' own log key points give
+/// two on the one or two decades a quick run's times span).
+fn log_ticks(lo: f64, hi: f64) -> Vec<f64> {
+    const MANTISSAS: [&[f64]; 3] = [&[1.0], &[1.0, 2.0, 5.0], &[1.0, 1.5, 2.0, 3.0, 5.0, 7.0]];
+    let ticks = |m: &[f64]| -> Vec<f64> {
+        let (d0, d1) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+        (d0..=d1)
+            .flat_map(|d| m.iter().map(move |k| k * 10f64.powi(d)))
+            .filter(|v| (lo..=hi).contains(v))
+            .collect()
+    };
+    let mut best = Vec::new();
+    for m in MANTISSAS {
+        best = ticks(m);
+        if best.len() >= 4 {
+            break;
+        }
+    }
+    best
+}
+
+/// A tick's value with the digits it needs: 2e-2, 1.5e-3.
+fn tick_label(v: f64) -> String {
+    let rounded: f64 = format!("{v:.1e}").parse().unwrap_or(v);
+    format!("{rounded:e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{log_ticks, tick_label};
+
+    #[test]
+    fn log_ticks_give_at_least_four_on_a_short_range() {
+        // A quick run's wall times: 3 ms to 40 ms. 1-2-5 gives 5, 10, 20 ms: three; the
+        // finer set gives seven.
+        let t = log_ticks(3e-3, 4e-2);
+        assert!(t.len() >= 4, "{t:?}");
+        assert!(t.iter().all(|v| (3e-3..=4e-2).contains(v)));
+        let labels: Vec<String> = t.iter().map(|&v| tick_label(v)).collect();
+        assert_eq!(
+            labels,
+            ["3e-3", "5e-3", "7e-3", "1e-2", "1.5e-2", "2e-2", "3e-2"]
+        );
+        // Six decades: one tick per decade is enough.
+        assert_eq!(log_ticks(1e-6, 1.0).len(), 7);
+    }
 }

@@ -275,6 +275,7 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
     let all = sorted.as_ref().map(|t| with_front(t, &problems));
     let levels = sorted.as_ref().map(levels_line);
 
+    let quick = quick_note(dir);
     let stability = stab_md_path
         .as_ref()
         .and_then(|p| stability_page(p, dir, out));
@@ -283,6 +284,7 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         "dir": dir.display().to_string(),
         "written": wp_path.as_ref().or(kernels_path.as_ref()).or(stab_md_path.as_ref()).and_then(|p| modified(p)).unwrap_or_else(|| "unknown".into()),
         "how": HOW,
+        "quick": quick,
         "wp_levels": levels,
         "wp_problems": wp_problems,
         "wp_references": refs.as_ref().map(table_value),
@@ -296,6 +298,37 @@ pub fn context(dir: Option<&Path>, out: &Path) -> Value {
         "missing": missing,
         "errors": errors,
     })
+}
+
+/// "benchmarks ran at quick size (work-precision: meshes ...; throughput; stability)" when
+/// the folder's meta.json (written by impact-bench) records a benchmark run with `--quick`;
+/// None when none did or there is no readable meta.json (folders from before it existed).
+pub fn quick_note(dir: &Path) -> Option<String> {
+    let meta: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("meta.json")).ok()?).ok()?;
+    if meta["quick"] != json!(true) {
+        return None;
+    }
+    // In the report's order (work-precision, throughput, stability), then any other.
+    let mut benchmarks: Vec<(&String, &Value)> = meta["benchmarks"].as_object()?.iter().collect();
+    let rank = |n: &str| {
+        ["work-precision", "throughput", "stability"]
+            .iter()
+            .position(|&k| k == n)
+    };
+    benchmarks.sort_by_key(|(n, _)| (rank(n).unwrap_or(usize::MAX), n.to_string()));
+    let runs: Vec<String> = benchmarks
+        .into_iter()
+        .filter(|(_, b)| b["quick"] == json!(true))
+        .map(|(name, b)| match b["sizes"].as_str() {
+            Some(sizes) => format!("{name}: {sizes}"),
+            None => name.clone(),
+        })
+        .collect();
+    Some(format!(
+        "benchmarks ran at quick size ({}); their times and errors are those of the small CI runs, not of the default sizes",
+        runs.join("; ")
+    ))
 }
 
 /// One work-precision problem: its plot (copied to `out/plots/`), its Pareto front with the

@@ -1,6 +1,7 @@
 //! The V&V report's pages from other tools, on small fixtures (not the real folders): the
 //! reconstruction page of issue 5 and the benchmarks of issue 6, present, missing, found at
-//! their default place, and a benchmarks folder with files missing. The report of the real
+//! their default place, a benchmarks folder with files missing, and the note when the
+//! benchmarks ran at `--quick` size (meta.json). The report of the real
 //! matrix is tested in matrix.rs.
 
 mod support;
@@ -89,3 +90,52 @@ fn report_names_the_benchmark_files_that_are_missing() {
     assert!(html.contains("<td class=\"SKIP\">coarse</td>"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The benchmarks' meta.json (impact-bench writes it) says when they ran at `--quick` size:
+/// the report's benchmark section carries the note then, and not for a full run or a folder
+/// without meta.json.
+#[test]
+fn report_notes_benchmarks_run_at_quick_size() {
+    let dir = temp_dir("quick");
+    let from = dir.join("verify");
+    write_empty_results(&from);
+    let bench = dir.join("bench");
+    write_benchmarks(&bench);
+    let note = "benchmarks ran at quick size (work-precision: meshes 10x2, 20x4 (wave 4x10, 4x20); CFL 0.9; 1 timed repeat";
+    let report = |meta: Option<&str>| {
+        let _ = std::fs::remove_file(bench.join("meta.json"));
+        if let Some(m) = meta {
+            std::fs::write(bench.join("meta.json"), m).unwrap();
+        }
+        let opts = ReportOptions {
+            benchmarks: Some(bench.clone()),
+            reconstruction: Some(dir.join("none.md")),
+        };
+        write_report_with(&from, &from, &opts).unwrap();
+        (
+            std::fs::read_to_string(from.join("report.md")).unwrap(),
+            std::fs::read_to_string(from.join("index.html")).unwrap(),
+        )
+    };
+    let (md, html) = report(Some(QUICK_META));
+    assert!(md.contains(&format!("**Note:** {note}")), "{md}");
+    assert!(md.contains("; throughput; stability)"), "{md}");
+    assert!(html.contains(&format!("Note: {note}")), "{html}");
+    for meta in [Some(FULL_META), None] {
+        let (md, html) = report(meta);
+        assert!(
+            !md.contains("quick size") && !html.contains("quick size"),
+            "{meta:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// meta.json as `impact-bench all --quick` writes it.
+const QUICK_META: &str = r#"{"quick": true, "benchmarks": {
+  "throughput": {"quick": true}, "stability": {"quick": true},
+  "work-precision": {"quick": true, "sizes": "meshes 10x2, 20x4 (wave 4x10, 4x20); CFL 0.9; 1 timed repeat"}}}"#;
+/// meta.json as `impact-bench all` (default sizes) writes it.
+const FULL_META: &str = r#"{"quick": false, "benchmarks": {
+  "throughput": {"quick": false}, "stability": {"quick": false},
+  "work-precision": {"quick": false, "sizes": "meshes 10x2, 20x4, 40x8, 80x16 (wave 4x10, 4x20, 4x40, 4x80); CFL 0.3, 0.6, 0.9; 2 timed repeats"}}}"#;
