@@ -126,6 +126,10 @@ pub struct CaseFile {
     /// Plots for the report.
     #[serde(default)]
     pub plots: Vec<PlotSpec>,
+    /// What the report shows of this case outside its own section (the paper's tables, the
+    /// Energy section, the reading paragraph); the report names no suite, it reads these.
+    #[serde(default)]
+    pub report: Option<ReportSpec>,
     /// Trivial or wrong models the evidence checks are re-evaluated on (issue 10).
     #[serde(default)]
     pub wrong_models: BTreeMap<String, Spanned<WrongModelSpec>>,
@@ -500,6 +504,50 @@ pub struct PlotSpec {
     /// not in ms.
     #[serde(default)]
     pub x_label: Option<String>,
+}
+
+/// A case's `report:` block: the report-wide parts it feeds (rendered by
+/// [`crate::report_paper`] and [`crate::report`]).
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReportSpec {
+    /// The paper's table this case's metrics fill, next to the printed values.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub table: Option<PaperTable>,
+    /// Plots of this case that the report also shows in a section of their own.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub plots: Vec<ReportPlots>,
+    /// What this case's results tell the paragraph on the reading of the paper.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub reading: Vec<ReadingPart>,
+}
+
+/// A table of Dokko & Kim (2004) that the report fills from a case's metrics.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PaperTable {
+    /// Table 1: elastic and elasto-plastic impact at 5 m/s (scenes `elastic`, `plastic`).
+    PaperTable1,
+    /// Table 2: impulse against initial velocity (scenes `elastic-v<v>`, `plastic-v<v>`).
+    PaperTable2,
+}
+
+/// A report-wide plot section a case contributes to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReportPlots {
+    /// The Energy section: the case's plots whose title names an energy.
+    EnergyBalance,
+}
+
+/// What a case tells the paragraph on which reading of the paper the suites run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ReadingPart {
+    /// The largest energy balance error of scenes `elastic`, `plastic` and `literal-pairing`.
+    EnergyBalance,
+    /// The error that stops the literal elasto-plastic run (scene `literal-plastic`).
+    LiteralError,
 }
 
 /// A parsed case with where it lives.

@@ -22,6 +22,7 @@ pub mod markdown;
 pub mod plot;
 pub mod repo;
 pub mod report;
+pub mod report_paper;
 pub mod report_plots;
 pub mod runner;
 pub mod shard;

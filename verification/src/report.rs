@@ -2,6 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::case::ReportPlots;
 use crate::check::CheckResult;
 use crate::check_row::CheckRow;
 use crate::repo::Repo;
@@ -55,10 +56,6 @@ pub fn environment(repo: &Repo, wall_s: f64, jobs: usize) -> serde_json::Value {
 
 const HTML_TEMPLATE: &str = include_str!("../templates/report.html.j2");
 const MD_TEMPLATE: &str = include_str!("../templates/report.md.j2");
-
-fn fmt(x: Option<f64>) -> String {
-    crate::runner::num(x)
-}
 
 fn slug(s: &str) -> String {
     s.chars()
@@ -147,8 +144,8 @@ pub fn write_report_with(
     for c in results["cases"].as_array().into_iter().flatten() {
         cases.push(case_context(c, &runs, &repo.root, out, &mut energy_plots)?);
     }
-    let (table1, table2) = paper_tables(&results, &repo.root);
-    let reading = reading_context(&results);
+    let (table1, table2) = crate::report_paper::paper_tables(&results, &repo.root);
+    let reading = crate::report_paper::reading_context(&results);
     let envv = serde_json::json!({
         "commit": env["commit"].as_str().unwrap_or("unknown"),
         "rustc": env["rustc"].as_str().unwrap_or("unknown"),
@@ -177,8 +174,8 @@ pub fn write_report_with(
         "source": from.display().to_string(),
         "counts": results["counts"],
         "cases": cases,
-        "table1": table1,
-        "table2": table2,
+        "paper_table1": table1,
+        "paper_table2": table2,
         "reading": reading,
         "energy_plots": energy_plots,
         "env": envv,
@@ -203,8 +200,8 @@ pub fn write_report_with(
 }
 
 /// One case's part of the report context: counts, status, references, the modelling table,
-/// failed runs, the check rows and the plots (written to `out/plots/`; the energy suite's
-/// energy plots also go to `energy_plots`).
+/// failed runs, the check rows and the plots (written to `out/plots/`; with `report: {plots:
+/// [energy-balance]}` its energy plots also go to `energy_plots`).
 fn case_context(
     c: &serde_json::Value,
     runs: &Path,
@@ -236,6 +233,8 @@ fn case_context(
     let suite = c["suite"].as_str().unwrap_or("");
     let case = c["case"].as_str().unwrap_or("");
     let plots = crate::report_plots::case_plots(c, runs, root);
+    let energy_section = crate::report_paper::declared(c)
+        .is_some_and(|r| r.plots.contains(&ReportPlots::EnergyBalance));
     let mut plot_files = Vec::new();
     for (i, (title, svg)) in plots.iter().enumerate() {
         if svg.starts_with("<svg") || svg.starts_with("<?xml") {
@@ -243,7 +242,7 @@ fn case_context(
             std::fs::write(out.join(&name), svg)?;
             plot_files.push(name);
         }
-        if suite == "energy" && title.to_lowercase().contains("energ") {
+        if energy_section && title.to_lowercase().contains("energ") {
             energy_plots.push(svg.clone());
         }
     }
@@ -321,130 +320,6 @@ fn modelling_rows(modelling: &serde_json::Value) -> Vec<serde_json::Value> {
     rows
 }
 
-fn rel(c: Option<f64>, p: Option<f64>) -> String {
-    match (c, p) {
-        (Some(c), Some(p)) if p != 0.0 => format!("{:+.1} %", 100.0 * (c / p - 1.0)),
-        _ => "-".into(),
-    }
-}
-
-fn short(x: Option<f64>) -> String {
-    x.map_or("-".into(), |v| format!("{v:.4}"))
-}
-
-/// The first case of `suite` in results.json.
-fn suite_case<'a>(results: &'a serde_json::Value, suite: &str) -> Option<&'a serde_json::Value> {
-    results["cases"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .find(|c| c["suite"] == suite)
-}
-
-/// Which reading of the paper the suites run and what the literal reading costs, from this
-/// run's own results: the energy balance of the default and literal pairings (energy suite)
-/// and the error that stops the literal elasto-plastic run (table1 suite).
-fn reading_context(results: &serde_json::Value) -> serde_json::Value {
-    let case = |suite: &str| suite_case(results, suite);
-    let balance = |scene: &str| {
-        case("energy").and_then(|c| c["metrics"][scene]["max_energy_balance_error"].as_f64())
-    };
-    let literal_error = case("table1")
-        .and_then(|c| c["modelling"]["literal-plastic"]["expected error"].as_str())
-        .filter(|m| !m.is_empty());
-    serde_json::json!({
-        "present": balance("literal-pairing").is_some() || literal_error.is_some(),
-        "default_elastic": fmt(balance("elastic")),
-        "default_plastic": fmt(balance("plastic")),
-        "literal_elastic": fmt(balance("literal-pairing")),
-        "literal_plastic_error": literal_error.unwrap_or("the run did not stop (see table1/literal-reading-plastic-breaks)"),
-    })
-}
-
-/// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
-fn paper_tables(
-    results: &serde_json::Value,
-    root: &Path,
-) -> (Vec<serde_json::Value>, Vec<serde_json::Value>) {
-    let find = |suite: &str| suite_case(results, suite).cloned();
-    let metric = |c: &Option<serde_json::Value>, scene: &str, key: &str| {
-        c.as_ref().and_then(|c| c["metrics"][scene][key].as_f64())
-    };
-    let t1 = find("table1");
-    let path1 = root.join("reference-data/paper/table1.csv");
-    let mut table1 = Vec::new();
-    let rows1 = [
-        ("impulse", "Impulse (N s)", "impulse_Ns", 1.0),
-        (
-            "max_contact_load",
-            "Max. contact load (kN)",
-            "peak_contact_force_N",
-            1e-3,
-        ),
-        (
-            "max_plate_displacement",
-            "Max. displacement (mm)",
-            "max_plate_displacement_m",
-            1e3,
-        ),
-        (
-            "contact_duration",
-            "Contact duration (ms)",
-            "contact_duration_s",
-            1e3,
-        ),
-        (
-            "impactor_final_velocity",
-            "Final impactor velocity (m/s)",
-            "final_impactor_velocity_mps",
-            1.0,
-        ),
-        (
-            "max_effective_stress_point_a",
-            "Max. von Mises at A (MPa)",
-            "max_von_mises_Pa.A",
-            1e-6,
-        ),
-    ];
-    for (q, label, key, scale) in rows1 {
-        let mut sel = std::collections::BTreeMap::new();
-        sel.insert("quantity".to_string(), q.to_string());
-        let p = |col: &str| crate::check::table_value(&path1, &sel, col).ok();
-        let ce = metric(&t1, "elastic", key).map(|v| v * scale);
-        let cp = metric(&t1, "plastic", key).map(|v| v * scale);
-        let (pe, pp) = (p("elastic"), p("elasto_plastic"));
-        table1.push(serde_json::json!({
-            "label": label, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
-            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp),
-            "pr": short(p("ratio_ep_e")), "cr": short(cp.zip(ce).map(|(a, b)| a / b)),
-        }));
-    }
-    let t2 = find("momentum-impulse");
-    let path2 = root.join("reference-data/paper/table2.csv");
-    let mut table2 = Vec::new();
-    for v in ["1.25", "2.5", "5", "7.5", "10", "12.5", "15"] {
-        let mut sel = std::collections::BTreeMap::new();
-        sel.insert("initial_velocity_mps".to_string(), v.to_string());
-        let p = |col: &str| crate::check::table_value(&path2, &sel, col).ok();
-        let ce = metric(&t2, &format!("elastic-v{v}"), "impulse_Ns");
-        let cp = metric(&t2, &format!("plastic-v{v}"), "impulse_Ns");
-        let id = [format!("elastic-v{v}"), format!("plastic-v{v}")]
-            .iter()
-            .filter_map(|s| {
-                let i = metric(&t2, s, "impulse_Ns")?;
-                let m = metric(&t2, s, "momentum_change_Ns")?;
-                Some((i - m).abs() / i)
-            })
-            .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
-        let (pe, pp) = (p("elastic_impulse_Ns"), p("ep_impulse_Ns"));
-        table2.push(serde_json::json!({
-            "v": v, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
-            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp), "id": fmt(id),
-        }));
-    }
-    (table1, table2)
-}
-
 /// A case's status: the worst of its checks' verdicts (FAIL, XPASS, FAIL*, OK, then SKIP).
 fn case_label(checks: &[serde_json::Value]) -> &'static str {
     let verdicts: Vec<Verdict> = checks
@@ -501,8 +376,14 @@ mod label_tests {
         (at_most["computed"], at_most["reference"], at_most["error"]) =
             (json!(1.0e-7), json!(1.0e-6), json!(68.0));
         let row = check_row(&at_most);
-        assert_eq!(row["error"], format!("margin {}", fmt(Some(9.0e-7))));
-        assert_eq!(row["reference"], format!("<= {}", fmt(Some(1.0e-6))));
+        assert_eq!(
+            row["error"],
+            format!("margin {}", crate::check_row::num(Some(9.0e-7)))
+        );
+        assert_eq!(
+            row["reference"],
+            format!("<= {}", crate::check_row::num(Some(1.0e-6)))
+        );
     }
 
     #[test]

@@ -52,6 +52,9 @@ pub struct CaseResult {
     /// Series data for convergence plots: series -> metric -> (levels, values).
     pub series: BTreeMap<String, SeriesData>,
     pub plots: Vec<crate::case::PlotSpec>,
+    /// The case's `report:` block (absent when it declares none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub report: Option<crate::case::ReportSpec>,
     pub checks: Vec<CheckResult>,
     /// The case's trivial or wrong models (name -> title) and what each gives for every
     /// evidence check (issue 10; empty when the case declares none).
@@ -518,6 +521,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         job_errors: BTreeMap::from([("(case.yaml)".to_string(), message)]),
         series: BTreeMap::new(),
         plots: Vec::new(),
+        report: None,
         checks: vec![check],
         wrong_models: BTreeMap::new(),
         discrimination: Vec::new(),
@@ -604,6 +608,7 @@ fn case_result(
         job_errors,
         series: series_data(series_metrics, &series, &ctx),
         plots: case.file.plots.clone(),
+        report: case.file.report.clone(),
         checks,
         wrong_models: crate::discriminate::titles(case),
         discrimination,

@@ -3,7 +3,8 @@
 //! crate (a module `a` imports `b` when its non-test code names `crate::b`), and no function
 //! over 120 lines outside tests (a `fn` item to its closing brace, as `cargo fmt` lays it out).
 //! The long functions not yet split are listed by name below; the list may only shrink: a
-//! listed function that became short fails too, so that it is struck off.
+//! listed function that became short fails too, so that it is struck off. And the report
+//! names no suite (issue 11): a case declares what the report shows of it in `report:`.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -300,4 +301,61 @@ fn the_rules_can_fail() {
         Some("run_all")
     );
     assert_eq!(fn_name("    fn decl(&self);"), None);
+}
+
+/// The suite names that the code of `text` quotes (`"energy"`, `"table1/..."`).
+fn quoted_suites<'a>(text: &str, suites: &'a [String]) -> Vec<&'a str> {
+    suites
+        .iter()
+        .filter(|s| text.contains(&format!("\"{s}\"")) || text.contains(&format!("\"{s}/")))
+        .map(String::as_str)
+        .collect()
+}
+
+#[test]
+fn the_report_names_no_suite() {
+    let root = root();
+    let mut suites: Vec<String> = std::fs::read_dir(root.join("verification/cases"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().is_dir())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    suites.sort();
+    assert!(suites.len() > 3, "{suites:?}");
+    // The files that render the report: report*.rs, markdown.rs, evidence_report.rs, templates/.
+    let src = root.join("verification/src");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&src)
+        .unwrap()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = p.file_name().unwrap().to_string_lossy();
+            name.starts_with("report") || name == "markdown.rs" || name == "evidence_report.rs"
+        })
+        .collect();
+    files.extend(
+        std::fs::read_dir(root.join("verification/templates"))
+            .unwrap()
+            .filter_map(|e| e.ok().map(|e| e.path())),
+    );
+    files.sort();
+    assert!(
+        files.iter().any(|f| f.ends_with("report_paper.rs")),
+        "{files:?}"
+    );
+    let mut found = Vec::new();
+    for f in &files {
+        // An HTML anchor (`id="energy"`) is a place in the page, not a suite looked up.
+        let text = non_test_code(&std::fs::read_to_string(f).unwrap()).replace("id=\"", "id=");
+        for s in quoted_suites(&text, &suites) {
+            found.push(format!("{}: \"{s}\"", f.display()));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "the report names suites (declare a `report:` block in the case instead): {found:?}"
+    );
+    // The scan finds a suite looked up by name.
+    let demo = non_test_code(r#"let c = case("energy"); let t = "table1/literal";"#);
+    assert_eq!(quoted_suites(&demo, &suites), ["energy", "table1"]);
 }

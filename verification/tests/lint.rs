@@ -224,6 +224,31 @@ fn malformed_case_files_give_file_line_column() {
     assert!(e.contains("cases/x/case.yaml"), "{e}");
 }
 
+/// A case's `report:` block (what the report shows of it): a known part parses, an unknown
+/// key or an unknown part is refused with file:line:col and what was written.
+#[test]
+fn report_blocks_refuse_unknown_keys_and_parts() {
+    let with = |block: &str| format!("{GOOD}report:\n{block}");
+    let c = parse_case(
+        &with("  table: paper-table1\n  plots: [energy-balance]\n  reading: [literal-error]\n"),
+        Path::new("cases/x/case.yaml"),
+    )
+    .unwrap();
+    let r = c.report.unwrap();
+    assert_eq!(
+        r.table,
+        Some(impact_verification::case::PaperTable::PaperTable1)
+    );
+    assert_eq!(r.plots.len(), 1);
+    // `report:` is line 19 (GOOD starts with an empty line), its first key line 20.
+    let e = parse_error(&with("  tables: paper-table1\n"));
+    assert!(e.starts_with("cases/x/case.yaml:20:"), "{e}");
+    assert!(e.contains("tables"), "{e}");
+    let e = parse_error(&with("  table: paper-table3\n"));
+    assert!(e.starts_with("cases/x/case.yaml:20:"), "{e}");
+    assert!(e.contains("paper-table3"), "{e}");
+}
+
 /// One scene language: a case's `set:` override goes through the solver's own validation
 /// (reference: the solver's rule for `time.dt.cfl`, "must lie in (0, 1]").
 #[test]
