@@ -10,6 +10,9 @@ use impact_solver::progress::ProgressMode;
 use impact_verification::report::ReportOptions;
 use impact_verification::runner::{self, Options, Repo};
 
+/// Signals closer than this to the first one are taken as the same stop request, s.
+const REPEATED_SIGNAL_WINDOW: std::time::Duration = std::time::Duration::from_secs(1);
+
 #[derive(Parser)]
 #[command(
     name = "impact",
@@ -397,10 +400,17 @@ fn simulate(
         }
     }
     // SIGINT/SIGTERM: the loop stops at its next poll and the staging folder is removed; a
-    // second signal ends the process at once (the next run removes what it left).
-    let _ = ctrlc::set_handler(|| {
+    // second signal ends the process at once (the next run removes what it left). A repeat
+    // within REPEATED_SIGNAL_WINDOW is the same request delivered twice (`timeout` signals
+    // the child and then its whole process group), not a second request.
+    let first_signal = std::sync::OnceLock::new();
+    let _ = ctrlc::set_handler(move || {
+        let first = first_signal.get_or_init(std::time::Instant::now);
         if impact_solver::interrupt::stop_requested() {
-            std::process::exit(130);
+            if first.elapsed() > REPEATED_SIGNAL_WINDOW {
+                std::process::exit(130);
+            }
+            return;
         }
         impact_solver::interrupt::request_stop();
     });

@@ -142,6 +142,16 @@ fn sigterm_stops_cleanly_and_a_killed_runs_staging_is_removed_by_the_next_run() 
         leftovers(&d)
     );
 
+    // `timeout` signals the child and then its process group: two TERMs at once are one
+    // stop request, still a clean stop.
+    let child = start_long_run(&d, &out);
+    signal(&child, "TERM");
+    signal(&child, "TERM");
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("removed the staging folder"), "{err}");
+    assert!(leftovers(&d).is_empty(), "{:?}", leftovers(&d));
+
     let child = start_long_run(&d, &out);
     signal(&child, "KILL");
     let _ = child.wait_with_output().unwrap();
