@@ -279,14 +279,19 @@ class Runner:
             results = {i: self._cached(t) for i, (t, k) in enumerate(zip(texts, keep)) if k is None}
             todo = [i for i, r in results.items() if r is None]
             results.update(self._sweep(scenes, texts, todo) if todo else {})
-            for i, k in enumerate(keep):
-                if k is not None:
-                    results[i] = self._run_one(texts[i], k)
+            kept = [i for i, k in enumerate(keep) if k is not None]
+            results.update(zip(kept, self._pool(lambda i: self._run_one(texts[i], keep[i]), kept)))
             return [results[i] for i in range(len(texts))]
-        if self.jobs <= 1 or len(texts) == 1:
-            return [self._run_one(t, k) for t, k in zip(texts, keep)]
+        return self._pool(lambda i: self._run_one(texts[i], keep[i]), range(len(texts)))
+
+    def _pool(self, run, items) -> list:
+        """`run` over `items`, `jobs` at a time (threads: both backends release the GIL while a
+        run works: a subprocess wait, or the package's native call)."""
+        items = list(items)
+        if self.jobs <= 1 or len(items) <= 1:
+            return [run(i) for i in items]
         with cf.ThreadPoolExecutor(max_workers=self.jobs) as ex:
-            return list(ex.map(self._run_one, texts, keep))
+            return list(ex.map(run, items))
 
 
 INT_KEYS = ("n_steps", "n_elements")
