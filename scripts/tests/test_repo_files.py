@@ -8,12 +8,16 @@ import os
 import subprocess
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
 def tracked_scripts(root: Path) -> list[Path]:
-    names = subprocess.run(["git", "ls-files", "-z"], cwd=root, capture_output=True,
-                           check=True).stdout.split(b"\0")
+    listed = subprocess.run(["git", "ls-files", "-z"], cwd=root, capture_output=True)
+    if listed.returncode != 0:
+        pytest.skip("not a git checkout: the tracked files are unknown")
+    names = listed.stdout.split(b"\0")
     paths = [root / n.decode() for n in names if n]
     scripts = []
     for p in paths:
