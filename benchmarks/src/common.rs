@@ -55,15 +55,20 @@ pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> anyhow::
     Ok(())
 }
 
-/// A Markdown table.
-pub fn markdown_table(header: &[&str], rows: &[Vec<String>]) -> String {
+/// A Markdown table; a `|` or line break inside a cell is escaped so the row stays one row.
+pub fn markdown_table<S: AsRef<str>>(header: &[S], rows: &[Vec<String>]) -> String {
+    let cells = |r: &mut dyn Iterator<Item = &str>| -> String {
+        r.map(|c| c.replace('|', "\\|").replace('\n', " "))
+            .collect::<Vec<_>>()
+            .join(" | ")
+    };
     let mut t = format!(
         "| {} |\n|{}|\n",
-        header.join(" | "),
+        cells(&mut header.iter().map(AsRef::as_ref)),
         vec!["---"; header.len()].join("|")
     );
     for r in rows {
-        t += &format!("| {} |\n", r.join(" | "));
+        t += &format!("| {} |\n", cells(&mut r.iter().map(String::as_str)));
     }
     t
 }

@@ -1,14 +1,20 @@
 //! `impact-bench`: run time against error (work-precision), kernel throughput, and stress
-//! tests of numerical stability. Results (CSV, SVG, Markdown) go to `--out`.
+//! tests of numerical stability. Results (CSV, SVG, Markdown) go to `--out`, and after every
+//! run the page of all that folder holds, `benchmarks.md` (what the V&V report embeds).
 
 mod common;
 mod meta;
+mod page;
+#[cfg(test)]
+mod page_tests;
+mod page_work_precision;
 mod pareto;
 mod stability;
+mod table;
 mod throughput;
 mod work_precision;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, Subcommand};
 
@@ -40,30 +46,39 @@ enum Command {
 fn main() -> anyhow::Result<()> {
     let cli = Cli::parse();
     std::fs::create_dir_all(&cli.out)?;
+    let ran = run(&cli);
+    // The page also after a failure (a stability run that found a blow-up): it shows it.
+    let page = page::write(&cli.out)?;
+    println!("page: {}", page.display());
+    ran
+}
+
+/// A benchmark: its name (meta.json, the page) and what runs it (output folder, quick).
+type Benchmark = (&'static str, fn(&Path, bool) -> anyhow::Result<()>);
+
+/// Every benchmark, in the order `all` runs them.
+const BENCHMARKS: [Benchmark; 3] = [
+    ("throughput", throughput::run),
+    ("work-precision", work_precision::run),
+    ("stability", stability::run),
+];
+
+/// Runs the benchmarks asked for and records each that finished in meta.json.
+fn run(cli: &Cli) -> anyhow::Result<()> {
     let (q, out) = (cli.quick, &cli.out);
     let wp_sizes = work_precision::Sizes::new(q).describe();
-    match cli.command {
-        Command::WorkPrecision => work_precision::run(out, q)?,
-        Command::Throughput => throughput::run(out, q)?,
-        Command::Stability => stability::run(out, q)?,
-        Command::All => {
-            throughput::run(out, q)?;
-            work_precision::run(out, q)?;
-            stability::run(out, q)?;
-        }
-    }
-    let ran: &[&str] = match cli.command {
-        Command::WorkPrecision => &["work-precision"],
-        Command::Throughput => &["throughput"],
-        Command::Stability => &["stability"],
-        Command::All => &["throughput", "work-precision", "stability"],
+    let asked = match cli.command {
+        Command::WorkPrecision => Some("work-precision"),
+        Command::Throughput => Some("throughput"),
+        Command::Stability => Some("stability"),
+        Command::All => None,
     };
-    for name in ran {
-        let sizes = if *name == "work-precision" {
-            Some(wp_sizes.as_str())
-        } else {
-            None
-        };
+    for (name, bench) in BENCHMARKS {
+        if asked.is_some_and(|a| a != name) {
+            continue;
+        }
+        bench(out, q)?;
+        let sizes = (name == "work-precision").then_some(wp_sizes.as_str());
         meta::record(out, name, q, sizes)?;
     }
     Ok(())
