@@ -141,11 +141,27 @@ pub fn img_data_uri(path: &Path, alt: &str, title: &str) -> Option<String> {
     ))
 }
 
-/// An SVG file's `<svg>` element as text for inlining in HTML (the XML prolog, doctype and
-/// comments before it dropped), or None when the file has no `<svg` element.
-pub fn svg_element(text: &str) -> Option<String> {
-    let i = text.find("<svg")?;
-    Some(text[i..].trim_end().to_string())
+/// A file's modification time, UTC, as 2025-01-31T12:00:00Z.
+pub fn modified(path: &Path) -> Option<String> {
+    let t = std::fs::metadata(path).ok()?.modified().ok()?;
+    let secs = t.duration_since(std::time::UNIX_EPOCH).ok()?.as_secs() as i64;
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm), UTC.
+    let (days, rem) = (secs.div_euclid(86400), secs.rem_euclid(86400));
+    let z = days + 719468;
+    let era = z.div_euclid(146097);
+    let doe = z - era * 146097;
+    let yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    Some(format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    ))
 }
 
 /// GitHub-style heading slug: lower case, alphanumerics, '-' and '_' kept, spaces to '-'.

@@ -105,7 +105,7 @@ fn reconstruction_context(path: &Path, root: &Path, out: &Path) -> serde_json::V
             section_title: Some("Reproducing Dokko & Kim (2004)"),
         },
     );
-    let written = crate::bench_report::modified(path).unwrap_or_else(|| "unknown".into());
+    let written = crate::markdown::modified(path).unwrap_or_else(|| "unknown".into());
     serde_json::json!({
         "present": true, "path": shown, "written": written,
         "html": e.html, "md": e.md, "missing": e.missing,

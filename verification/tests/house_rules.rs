@@ -351,6 +351,16 @@ fn the_report_names_no_suite() {
             found.push(format!("{}: \"{s}\"", f.display()));
         }
     }
+    // Nor in its prose: the templates' text and the cases' texts the report shows say what a
+    // section or case is ("the Energy section"), not which folder it sits in ("energy suite").
+    let mut shown = files.clone();
+    shown.extend(case_files(&root.join("verification/cases")));
+    for f in &shown {
+        let text = std::fs::read_to_string(f).unwrap();
+        for s in suites_in_prose(&text, &suites) {
+            found.push(format!("{}: \"{s} suite\"", f.display()));
+        }
+    }
     assert!(
         found.is_empty(),
         "the report names suites (declare a `report:` block in the case instead): {found:?}"
@@ -358,4 +368,37 @@ fn the_report_names_no_suite() {
     // The scan finds a suite looked up by name.
     let demo = non_test_code(r#"let c = case("energy"); let t = "table1/literal";"#);
     assert_eq!(quoted_suites(&demo, &suites), ["energy", "table1"]);
+    let prose =
+        "error 0.26 of the largest energy, elastic, Energy suite: counted twice; the patch\nsuite";
+    assert_eq!(suites_in_prose(prose, &suites), ["energy", "patch"]);
+    assert!(suites_in_prose("the Energy section; a test suite", &suites).is_empty());
+}
+
+/// The suites a text names in prose as "<suite> suite" (any case, across a line break).
+fn suites_in_prose<'a>(text: &str, suites: &'a [String]) -> Vec<&'a str> {
+    let words = text
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_lowercase();
+    suites
+        .iter()
+        .filter(|s| words.contains(&format!("{s} suite")))
+        .map(String::as_str)
+        .collect()
+}
+
+/// Every case.yaml under `dir`.
+fn case_files(dir: &Path) -> Vec<PathBuf> {
+    let mut found = Vec::new();
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            found.extend(case_files(&p));
+        } else if p.file_name().is_some_and(|n| n == "case.yaml") {
+            found.push(p);
+        }
+    }
+    found.sort();
+    found
 }
