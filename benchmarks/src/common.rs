@@ -2,7 +2,8 @@
 
 use std::path::Path;
 
-use impact_solver::{simulate, Outcome, Quiet, Scene};
+use impact_solver::simd::KernelPath;
+use impact_solver::{simulate_on, History, Outcome, Quiet, Scene};
 
 const ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
 const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
@@ -35,10 +36,28 @@ pub fn pulse() -> Scene {
 /// Best (minimum) wall times of a scene over `repeats` runs after one warm-up run:
 /// (setup s, time loop s) and the last outcome.
 pub fn timed(scene: &Scene, repeats: usize) -> anyhow::Result<(f64, f64, Outcome)> {
+    timed_on(scene, repeats, KernelPath::fastest())
+}
+
+/// [`timed`] with the element kernels on `path`.
+pub fn timed_on(
+    scene: &Scene,
+    repeats: usize,
+    path: KernelPath,
+) -> anyhow::Result<(f64, f64, Outcome)> {
+    let once = || -> anyhow::Result<Outcome> {
+        let mut history = History::default();
+        let (summary, mesh) = simulate_on(scene, &mut Quiet, None, &mut history, path)?;
+        Ok(Outcome {
+            summary,
+            history,
+            mesh,
+        })
+    };
     let mut best = (f64::INFINITY, f64::INFINITY);
-    let mut last = simulate(scene, &mut Quiet)?;
+    let mut last = once()?;
     for _ in 0..repeats {
-        last = simulate(scene, &mut Quiet)?;
+        last = once()?;
         best.0 = best.0.min(last.summary.setup_time);
         best.1 = best.1.min(last.summary.loop_time);
     }

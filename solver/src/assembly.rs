@@ -46,25 +46,20 @@ impl Assembly {
         )
     }
 
-    /// Computes every element's forces with `kernel(e, states of e)` (states: `points` per
-    /// element), scatters them into `f` (overwritten) and returns the summed energies.
+    /// Computes every element's forces with `chunk_kernel(first element, forces of the chunk,
+    /// states of the chunk)` (states: `points` per element; the kernel returns the chunk's
+    /// energies summed in element order), scatters them into `f` (overwritten) and returns
+    /// the summed energies.
     pub fn assemble<S: Send>(
         &mut self,
         states: &mut [S],
         points: usize,
         nodes: impl Fn(usize) -> [u32; 4] + Sync,
-        kernel: impl Fn(usize, &mut [S]) -> (ElementVector, ElementEnergy) + Sync,
+        chunk_kernel: impl Fn(usize, &mut [ElementVector], &mut [S]) -> ElementEnergy + Sync,
         f: &mut [f64],
     ) -> ElementEnergy {
         let chunk = |c: usize, forces: &mut [ElementVector], states: &mut [S]| {
-            let mut energy = ElementEnergy::default();
-            for (k, fe) in forces.iter_mut().enumerate() {
-                let e = c * CHUNK + k;
-                let (force, en) = kernel(e, &mut states[k * points..(k + 1) * points]);
-                *fe = force;
-                energy += en;
-            }
-            energy
+            chunk_kernel(c * CHUNK, forces, states)
         };
         if self.parallel {
             self.element_forces
@@ -94,4 +89,23 @@ impl Assembly {
         }
         total
     }
+}
+
+/// The scalar chunk kernel: `kernel(e, states of e)` element by element, energies summed in
+/// element order (`first`: the chunk's first element).
+#[inline(always)]
+pub fn each_element<S>(
+    first: usize,
+    forces: &mut [ElementVector],
+    states: &mut [S],
+    points: usize,
+    kernel: impl Fn(usize, &mut [S]) -> (ElementVector, ElementEnergy),
+) -> ElementEnergy {
+    let mut energy = ElementEnergy::default();
+    for (k, fe) in forces.iter_mut().enumerate() {
+        let (force, en) = kernel(first + k, &mut states[k * points..(k + 1) * points]);
+        *fe = force;
+        energy += en;
+    }
+    energy
 }

@@ -10,9 +10,11 @@
 //! counter-clockwise. Every element has out-of-plane thickness `W` (the plate width), so
 //! forces are N and volumes m^3 for the whole width.
 
+use crate::batch::{PointLanes, VectorLanes};
 use crate::error::{Error, Result};
 use crate::material::{ConstitutiveModel, Elastic, Strain, Stress};
 use crate::mesh::Mesh;
+use crate::simd::{Lanes, LANES};
 
 pub type ElementVector = [f64; 8];
 
@@ -143,6 +145,23 @@ pub trait Formulation: Sync {
     }
     /// Element volume (area * W), m^3.
     fn volume(&self, e: usize) -> f64;
+    /// [`Formulation::strains`] of batch `b` (elements `b * LANES ..`, [`crate::batch`]):
+    /// point x component x lanes.
+    fn strains_lanes(&self, b: usize, u: &VectorLanes) -> [[Lanes; 4]; 4];
+    /// [`Formulation::weights`] of batch `b`: point x lanes, m^3.
+    fn weights_lanes(&self, b: usize) -> [Lanes; 4];
+    /// [`Formulation::forces`] of batch `b` (stresses point x component x lanes).
+    fn forces_lanes(&self, b: usize, stresses: &[[Lanes; 4]; 4]) -> VectorLanes;
+    /// [`Formulation::add_hourglass`] of batch `b`: the hourglass energy per lane, J.
+    #[inline(always)]
+    fn add_hourglass_lanes(&self, _b: usize, _u: &VectorLanes, _f: &mut VectorLanes) -> Lanes {
+        Lanes::splat(0.0)
+    }
+}
+
+/// The lane geometry of `per_element` in batches of [`LANES`] elements.
+fn batches<T: Copy, G>(per_element: &[T], lanes: impl Fn(&[T]) -> G) -> Vec<G> {
+    per_element.chunks(LANES).map(lanes).collect()
 }
 
 /// Internal nodal forces and energies of element `e`, updating its material states.
@@ -228,16 +247,22 @@ fn centroid_geometry(mesh: &Mesh, e: usize) -> Result<(PointGeometry, f64)> {
 pub struct FullQ4 {
     nodes: Vec<[u32; 4]>,
     points: Vec<[PointGeometry; 4]>,
+    /// The Gauss points per batch of [`LANES`] elements.
+    point_lanes: Vec<[PointLanes; 4]>,
     width: f64,
 }
 
 impl FullQ4 {
     pub fn new(mesh: &Mesh, width: f64) -> Result<FullQ4> {
+        let points: Vec<[PointGeometry; 4]> = (0..mesh.elements.len())
+            .map(|e| gauss_geometry(mesh, e))
+            .collect::<Result<_>>()?;
         Ok(FullQ4 {
             nodes: mesh.elements.clone(),
-            points: (0..mesh.elements.len())
-                .map(|e| gauss_geometry(mesh, e))
-                .collect::<Result<_>>()?,
+            point_lanes: batches(&points, |b| {
+                std::array::from_fn(|p| PointLanes::of(&b.iter().map(|g| g[p]).collect::<Vec<_>>()))
+            }),
+            points,
             width,
         })
     }
@@ -276,21 +301,50 @@ impl Formulation for FullQ4 {
     fn volume(&self, e: usize) -> f64 {
         self.weights(e).iter().sum()
     }
+    #[inline(always)]
+    fn strains_lanes(&self, b: usize, u: &VectorLanes) -> [[Lanes; 4]; 4] {
+        // Loops, not `array::map`: its closure may stay out of line, compiled for the
+        // baseline instruction set (see `crate::simd::Kernel`).
+        let mut strains = [[Lanes::splat(0.0); 4]; 4];
+        for (s, g) in strains.iter_mut().zip(&self.point_lanes[b]) {
+            *s = g.strain(u);
+        }
+        strains
+    }
+    #[inline(always)]
+    fn weights_lanes(&self, b: usize) -> [Lanes; 4] {
+        let mut w = [Lanes::splat(0.0); 4];
+        for (w, g) in w.iter_mut().zip(&self.point_lanes[b]) {
+            *w = g.det_j * self.width;
+        }
+        w
+    }
+    #[inline(always)]
+    fn forces_lanes(&self, b: usize, s: &[[Lanes; 4]; 4]) -> VectorLanes {
+        let mut f = [Lanes::splat(0.0); 8];
+        for (p, g) in self.point_lanes[b].iter().enumerate() {
+            g.add_divergence(g.det_j * self.width, &s[p], &mut f);
+        }
+        f
+    }
 }
 
 /// Selective-reduced integration (B-bar): 2x2 deviatoric, centroid volumetric.
 pub struct SelectiveQ4 {
     full: FullQ4,
     centroid: Vec<PointGeometry>,
+    centroid_lanes: Vec<PointLanes>,
 }
 
 impl SelectiveQ4 {
     pub fn new(mesh: &Mesh, width: f64) -> Result<SelectiveQ4> {
+        let centroid: Vec<PointGeometry> = (0..mesh.elements.len())
+            .map(|e| centroid_geometry(mesh, e).map(|c| c.0))
+            .collect::<Result<_>>()?;
         Ok(SelectiveQ4 {
             full: FullQ4::new(mesh, width)?,
-            centroid: (0..mesh.elements.len())
-                .map(|e| centroid_geometry(mesh, e).map(|c| c.0))
-                .collect::<Result<_>>()?,
+            centroid_lanes: batches(&centroid, PointLanes::of),
+            centroid,
         })
     }
 }
@@ -340,6 +394,41 @@ impl Formulation for SelectiveQ4 {
     fn volume(&self, e: usize) -> f64 {
         self.full.volume(e)
     }
+    #[inline(always)]
+    fn strains_lanes(&self, b: usize, u: &VectorLanes) -> [[Lanes; 4]; 4] {
+        let centroid_dilatation = self.centroid_lanes[b].dilatation(u);
+        let mut strains = self.full.strains_lanes(b, u);
+        for s in &mut strains {
+            let shift = (centroid_dilatation - s[0] - s[1]) / 3.0;
+            *s = [s[0] + shift, s[1] + shift, shift, s[3]];
+        }
+        strains
+    }
+    #[inline(always)]
+    fn weights_lanes(&self, b: usize) -> [Lanes; 4] {
+        self.full.weights_lanes(b)
+    }
+    /// [`SelectiveQ4::forces`] in lanes.
+    #[inline(always)]
+    fn forces_lanes(&self, b: usize, s: &[[Lanes; 4]; 4]) -> VectorLanes {
+        let mut f = [Lanes::splat(0.0); 8];
+        let c = &self.centroid_lanes[b];
+        let mut mean_total = Lanes::splat(0.0);
+        for (p, g) in self.full.point_lanes[b].iter().enumerate() {
+            let w = g.det_j * self.full.width;
+            let mean = (s[p][0] + s[p][1] + s[p][2]) / 3.0;
+            mean_total += w * mean;
+            for a in 0..4 {
+                f[2 * a] += w * (g.dndx[a] * (s[p][0] - mean) + g.dndy[a] * s[p][3]);
+                f[2 * a + 1] += w * (g.dndy[a] * (s[p][1] - mean) + g.dndx[a] * s[p][3]);
+            }
+        }
+        for a in 0..4 {
+            f[2 * a] += mean_total * c.dndx[a];
+            f[2 * a + 1] += mean_total * c.dndy[a];
+        }
+        f
+    }
 }
 
 /// One-point quadrature with Flanagan-Belytschko hourglass control.
@@ -351,6 +440,17 @@ pub struct OnePointQ4 {
     gamma: Vec<[f64; 4]>,
     /// Hourglass stiffness, N/m.
     stiffness: Vec<f64>,
+    /// Per batch of [`LANES`] elements: the centroid, volume, gamma and stiffness in lanes.
+    lanes: Vec<OnePointLanes>,
+}
+
+/// [`OnePointQ4`]'s data of one batch in lanes.
+#[derive(Debug, Clone, Copy, Default)]
+struct OnePointLanes {
+    centroid: PointLanes,
+    volume: Lanes,
+    gamma: [Lanes; 4],
+    stiffness: Lanes,
 }
 
 const HOURGLASS_H: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
@@ -380,6 +480,7 @@ impl OnePointQ4 {
             volume: Vec::with_capacity(n),
             gamma: Vec::with_capacity(n),
             stiffness: Vec::with_capacity(n),
+            lanes: Vec::new(),
         };
         for e in 0..n {
             let (c, area) = centroid_geometry(mesh, e)?;
@@ -394,6 +495,23 @@ impl OnePointQ4 {
             q.gamma.push(gamma);
             q.centroid.push(c);
         }
+        q.lanes = (0..n.div_ceil(LANES))
+            .map(|b| {
+                let es = b * LANES..(b * LANES + LANES).min(n);
+                let mut g = OnePointLanes {
+                    centroid: PointLanes::of(&q.centroid[es.clone()]),
+                    ..Default::default()
+                };
+                for (l, e) in es.enumerate() {
+                    g.volume.0[l] = q.volume[e];
+                    g.stiffness.0[l] = q.stiffness[e];
+                    for a in 0..4 {
+                        g.gamma[a].0[l] = q.gamma[e][a];
+                    }
+                }
+                g
+            })
+            .collect();
         Ok(q)
     }
 }
@@ -439,6 +557,40 @@ impl Formulation for OnePointQ4 {
     }
     fn volume(&self, e: usize) -> f64 {
         self.volume[e]
+    }
+    #[inline(always)]
+    fn strains_lanes(&self, b: usize, u: &VectorLanes) -> [[Lanes; 4]; 4] {
+        let s = self.lanes[b].centroid.strain(u);
+        [s, s, s, s]
+    }
+    #[inline(always)]
+    fn weights_lanes(&self, b: usize) -> [Lanes; 4] {
+        let zero = Lanes::splat(0.0);
+        [self.lanes[b].volume, zero, zero, zero]
+    }
+    #[inline(always)]
+    fn forces_lanes(&self, b: usize, s: &[[Lanes; 4]; 4]) -> VectorLanes {
+        let mut f = [Lanes::splat(0.0); 8];
+        let g = &self.lanes[b];
+        g.centroid.add_divergence(g.volume, &s[0], &mut f);
+        f
+    }
+    /// [`OnePointQ4::add_hourglass`] in lanes.
+    #[inline(always)]
+    fn add_hourglass_lanes(&self, b: usize, u: &VectorLanes, f: &mut VectorLanes) -> Lanes {
+        let g = &self.lanes[b];
+        let (mut qx, mut qy) = (Lanes::splat(0.0), Lanes::splat(0.0));
+        for a in 0..4 {
+            qx += g.gamma[a] * u[2 * a];
+            qy += g.gamma[a] * u[2 * a + 1];
+        }
+        let k = g.stiffness;
+        for a in 0..4 {
+            f[2 * a] += k * qx * g.gamma[a];
+            f[2 * a + 1] += k * qy * g.gamma[a];
+        }
+        let energy = 0.5 * k * (qx * qx + qy * qy);
+        energy
     }
 }
 

@@ -4,7 +4,8 @@
 
 use std::result::Result as StdResult;
 
-use crate::assembly::Assembly;
+use crate::assembly::{each_element, Assembly};
+use crate::batch;
 use crate::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
 use crate::element::{element_response, gather, lumped_masses, ElementEnergy, Formulation};
@@ -19,6 +20,7 @@ use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::{Mesh, PlateMesh};
 use crate::scene::{DtChoice, End, Impactor, Scene};
+use crate::simd::{dispatch, KernelPath};
 use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
@@ -58,6 +60,8 @@ pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     pub screen: Option<ElasticScreen>,
     /// Chunked (optionally multithreaded) assembly buffers.
     pub assembly: Assembly,
+    /// Batched kernels (the default) or the scalar reference.
+    pub kernel_path: KernelPath,
 }
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
@@ -83,7 +87,14 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             screen: None,
             // Elastic materials have a zero-sized state and a cheap kernel.
             assembly: Assembly::for_mesh(n, std::mem::size_of::<M::State>() > 0),
+            kernel_path: KernelPath::fastest(),
         }
+    }
+
+    /// Runs the element kernels on `path` (the scalar reference or a batched instruction set).
+    pub fn with_kernel_path(mut self, path: KernelPath) -> Self {
+        self.kernel_path = path;
+        self
     }
 
     /// Internal forces at `u` into `f` (overwritten), updating the material states.
@@ -95,28 +106,71 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             linear,
             screen,
             assembly,
+            kernel_path,
             ..
         } = self;
-        let (formulation, material) = (&*formulation, &*material);
+        let (formulation, material, path) = (&*formulation, &*material, *kernel_path);
+        let screen = screen.as_ref();
         let nodes = |e: usize| formulation.nodes(e);
-        match linear {
-            Some(k) => assembly.assemble(
+        match (linear, path) {
+            (Some(k), KernelPath::Scalar) => assembly.assemble(
                 states,
                 F::POINTS,
                 nodes,
-                |e, _| k.element(formulation, e, u),
+                |first, forces, states| {
+                    each_element(first, forces, states, F::POINTS, |e, _| {
+                        k.element(formulation, e, u)
+                    })
+                },
                 f,
             ),
-            None => assembly.assemble(
+            (Some(k), KernelPath::Batched(isa)) => assembly.assemble(
                 states,
                 F::POINTS,
                 nodes,
-                |e, states| {
-                    let ue = gather(formulation.nodes(e), u);
-                    screen
-                        .as_ref()
-                        .and_then(|s| s.element(formulation, material, e, &ue, states))
-                        .unwrap_or_else(|| element_response(formulation, material, e, &ue, states))
+                |first, forces, _| {
+                    let chunk = batch::LinearChunk {
+                        kernel: k,
+                        formulation,
+                        u,
+                        first,
+                        forces,
+                    };
+                    dispatch(isa, chunk)
+                },
+                f,
+            ),
+            (None, KernelPath::Scalar) => assembly.assemble(
+                states,
+                F::POINTS,
+                nodes,
+                |first, forces, states| {
+                    each_element(first, forces, states, F::POINTS, |e, states| {
+                        let ue = gather(formulation.nodes(e), u);
+                        screen
+                            .and_then(|s| s.element(formulation, material, e, &ue, states))
+                            .unwrap_or_else(|| {
+                                element_response(formulation, material, e, &ue, states)
+                            })
+                    })
+                },
+                f,
+            ),
+            (None, KernelPath::Batched(isa)) => assembly.assemble(
+                states,
+                F::POINTS,
+                nodes,
+                |first, forces, states| {
+                    let chunk = batch::StressPathChunk {
+                        formulation,
+                        material,
+                        screen,
+                        u,
+                        first,
+                        forces,
+                        states,
+                    };
+                    dispatch(isa, chunk)
                 },
                 f,
             ),

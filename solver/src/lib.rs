@@ -9,6 +9,7 @@
 //! [`summary`], [`output`] (files).
 
 pub mod assembly;
+pub mod batch;
 pub mod budget;
 pub mod contact;
 pub mod contact_failure;
@@ -29,6 +30,7 @@ pub mod output;
 pub mod overrides;
 pub mod progress;
 pub mod scene;
+pub mod simd;
 pub mod stable_step;
 pub mod stiffness;
 pub mod summary;
@@ -87,6 +89,24 @@ pub fn simulate_into(
     max_memory: Option<f64>,
     sink: &mut dyn HistorySink,
 ) -> Result<(Summary, PlateMesh)> {
+    simulate_on(
+        scene,
+        observer,
+        max_memory,
+        sink,
+        simd::KernelPath::fastest(),
+    )
+}
+
+/// [`simulate_into`] with the element kernels on `path` (the scalar reference or a batched
+/// instruction set: the results are the same bits).
+pub fn simulate_on(
+    scene: &Scene,
+    observer: &mut dyn Observer,
+    max_memory: Option<f64>,
+    sink: &mut dyn HistorySink,
+    path: simd::KernelPath,
+) -> Result<(Summary, PlateMesh)> {
     let estimate = budget::Estimate::of(scene);
     let estimate = if sink.holds_rows() {
         estimate
@@ -103,7 +123,7 @@ pub fn simulate_into(
         observer,
         sink,
     };
-    let summary = model::build(scene, &mesh, model::Kernel::Solver, run)??;
+    let summary = model::build_on(scene, &mesh, model::Kernel::Solver, path, run)??;
     Ok((summary, mesh))
 }
 

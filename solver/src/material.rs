@@ -5,6 +5,7 @@
 //! modified strain), stresses `[xx, yy, zz, xy]`, in Pa.
 
 use crate::scene::{Hardening, Material as MaterialSpec};
+use crate::simd::{Lanes, Mask, LANES};
 
 pub type Strain = [f64; 4];
 pub type Stress = [f64; 4];
@@ -25,6 +26,21 @@ pub trait ConstitutiveModel: Sync {
     type State: Copy + Default + Send + Sync + std::fmt::Debug;
     /// Stress for the total strain, updating the state (called once per point per step).
     fn update(&self, strain: &Strain, state: &mut Self::State) -> PointResponse;
+    /// [`ConstitutiveModel::update`] at one point of [`LANES`] elements (strain components x
+    /// lanes): lane `l`'s state is `states[first + l * stride]` when `active[l]`; an inactive
+    /// lane's state is neither read nor written and its results are unspecified. Bit-identical
+    /// to `update` lane by lane (the default runs it lane by lane).
+    #[inline(always)]
+    fn update_lanes(
+        &self,
+        strain: &[Lanes; 4],
+        states: &mut [Self::State],
+        first: usize,
+        stride: usize,
+        active: &Mask,
+    ) -> LaneResponse {
+        update_each_lane(self, strain, states, first, stride, active)
+    }
     /// Stress for the total strain and a converged state, without changing it.
     fn stress(&self, strain: &Strain, state: &Self::State) -> Stress;
     /// Equivalent plastic strain of a state.
@@ -40,6 +56,45 @@ pub trait ConstitutiveModel: Sync {
     fn is_virgin(&self, _state: &Self::State) -> bool {
         true
     }
+}
+
+/// What a material returns at one integration point of [`LANES`] elements.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LaneResponse {
+    /// Components `[xx, yy, zz, xy]` x lanes, Pa.
+    pub stress: [Lanes; 4],
+    /// J/m^3
+    pub strain_energy_density: Lanes,
+    /// J/m^3
+    pub plastic_work_density: Lanes,
+}
+
+/// The lane-by-lane fallback of [`ConstitutiveModel::update_lanes`] (scalar `update` per lane).
+#[inline(always)]
+pub fn update_each_lane<M: ConstitutiveModel + ?Sized>(
+    material: &M,
+    strain: &[Lanes; 4],
+    states: &mut [M::State],
+    first: usize,
+    stride: usize,
+    active: &Mask,
+) -> LaneResponse {
+    let mut out = LaneResponse::default();
+    for l in (0..LANES).filter(|&l| active[l]) {
+        let e = [
+            strain[0].0[l],
+            strain[1].0[l],
+            strain[2].0[l],
+            strain[3].0[l],
+        ];
+        let r = material.update(&e, &mut states[first + l * stride]);
+        for c in 0..4 {
+            out.stress[c].0[l] = r.stress[c];
+        }
+        out.strain_energy_density.0[l] = r.strain_energy_density;
+        out.plastic_work_density.0[l] = r.plastic_work_density;
+    }
+    out
 }
 
 /// Isotropic linear elasticity (Lame constants in Pa).
@@ -91,6 +146,30 @@ impl ConstitutiveModel for Elastic {
             stress,
             strain_energy_density: half_contraction(&stress, strain),
             plastic_work_density: 0.0,
+        }
+    }
+    /// `stress_of` and `half_contraction` in lanes, in their order.
+    #[inline(always)]
+    fn update_lanes(
+        &self,
+        e: &[Lanes; 4],
+        _: &mut [()],
+        _: usize,
+        _: usize,
+        _: &Mask,
+    ) -> LaneResponse {
+        let lt = self.lambda * (e[0] + e[1] + e[2]);
+        let m2 = 2.0 * self.mu;
+        let s = [
+            lt + m2 * e[0],
+            lt + m2 * e[1],
+            lt + m2 * e[2],
+            self.mu * e[3],
+        ];
+        LaneResponse {
+            stress: s,
+            strain_energy_density: 0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3]),
+            plastic_work_density: Lanes::splat(0.0),
         }
     }
     fn stress(&self, strain: &Strain, _: &()) -> Stress {
@@ -154,6 +233,13 @@ impl FlowCurve {
             let (k0, s0) = p[i];
             (s0 + self.tail_slope * (k - k0), self.tail_slope, None)
         }
+    }
+
+    /// `(initial yield stress Pa, plastic modulus Pa)` of a linear-hardening curve, `None` for
+    /// a tabulated one.
+    #[inline(always)]
+    pub fn linear(&self) -> Option<(f64, f64)> {
+        (self.points.len() == 1).then(|| (self.points[0].1, self.tail_slope))
     }
 
     /// Flow stress at equivalent plastic strain `k`, Pa.
@@ -251,6 +337,81 @@ impl ConstitutiveModel for VonMises {
             plastic_work_density = 0.5 * (sy_old + self.flow.flow_stress(state.eqps)) * dk;
         }
         PointResponse {
+            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
+            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
+            plastic_work_density,
+        }
+    }
+
+    /// The radial return of `update` in lanes (linear hardening; a tabulated curve runs
+    /// `update` lane by lane): the trial for every lane, the return where any lane yields,
+    /// selected per lane, and the state written back only for active lanes that yield. Every
+    /// expression is `update`'s (and `plastic_increment`'s first piece) in the same order.
+    #[inline(always)]
+    fn update_lanes(
+        &self,
+        strain: &[Lanes; 4],
+        states: &mut [PlasticState],
+        first: usize,
+        stride: usize,
+        active: &Mask,
+    ) -> LaneResponse {
+        let Some((yield_stress, h)) = self.flow.linear() else {
+            return update_each_lane(self, strain, states, first, stride, active);
+        };
+        let mu = self.elastic.mu;
+        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
+        let (mut p, mut k_old) = ([Lanes::splat(0.0); 4], Lanes::splat(0.0));
+        for l in (0..LANES).filter(|&l| active[l]) {
+            let s = &states[first + l * stride];
+            for c in 0..4 {
+                p[c].0[l] = s.plastic_strain[c];
+            }
+            k_old.0[l] = s.eqps;
+        }
+        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
+        let trace = e[0] + e[1] + e[2];
+        let third = trace / 3.0;
+        let mut dev = [
+            2.0 * mu * (e[0] - third),
+            2.0 * mu * (e[1] - third),
+            2.0 * mu * (e[2] - third),
+            mu * (strain[3] - 2.0 * p[3]),
+        ];
+        let mean = bulk * trace;
+        let volumetric_energy = 0.5 * mean * trace;
+        let q2 =
+            1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
+        let sy_old = yield_stress + h * k_old;
+        let yields = q2.gt(sy_old * sy_old);
+        let mut q2_final = q2;
+        let mut plastic_work_density = Lanes::splat(0.0);
+        if yields.iter().any(|&y| y) {
+            let three_mu = 3.0 * mu;
+            let q = q2.sqrt();
+            // plastic_increment(q, k_old): its first (and only) piece, from dk = 0.
+            let dk0 = 0.0;
+            let sy = yield_stress + h * (k_old + dk0);
+            let x = (q - three_mu * dk0 - sy) / (three_mu + h);
+            let dk = (dk0 + x).max(0.0);
+            let r = 1.5 * dk / q;
+            let scale = 1.0 - 2.0 * mu * r;
+            let eqps = k_old + dk;
+            for c in 0..4 {
+                p[c] = Lanes::select(&yields, p[c] + r * dev[c], p[c]);
+                dev[c] = Lanes::select(&yields, dev[c] * scale, dev[c]);
+            }
+            q2_final = Lanes::select(&yields, q2 * scale * scale, q2);
+            let work = 0.5 * (sy_old + (yield_stress + h * eqps)) * dk;
+            plastic_work_density = Lanes::select(&yields, work, plastic_work_density);
+            for l in (0..LANES).filter(|&l| active[l] && yields[l]) {
+                states[first + l * stride] = PlasticState {
+                    plastic_strain: [p[0].0[l], p[1].0[l], p[2].0[l], p[3].0[l]],
+                    eqps: eqps.0[l],
+                };
+            }
+        }
+        LaneResponse {
             stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
             strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
             plastic_work_density,

@@ -9,6 +9,7 @@ use crate::integrator::PlateModel;
 use crate::material::{ConstitutiveModel, Elastic, VonMises};
 use crate::mesh::{Mesh, PlateMesh};
 use crate::scene::{ElementKind, Scene};
+use crate::simd::KernelPath;
 
 /// One of the element formulations, chosen at run time.
 pub enum AnyFormulation {
@@ -81,11 +82,23 @@ pub trait UseModel {
 }
 
 /// Builds the model of `scene` on `mesh` (its element, its material, `kernel`) and hands it
-/// to `user`.
+/// to `user`, with the batched kernels on this processor's best instruction set.
 pub fn build<U: UseModel>(
     scene: &Scene,
     mesh: &PlateMesh,
     kernel: Kernel,
+    user: U,
+) -> Result<U::Output> {
+    build_on(scene, mesh, kernel, KernelPath::fastest(), user)
+}
+
+/// [`build`] with the element kernels on `path` (e.g. [`KernelPath::Scalar`], the reference
+/// the batched kernels are tested and benchmarked against).
+pub fn build_on<U: UseModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    path: KernelPath,
     user: U,
 ) -> Result<U::Output> {
     let m = &scene.material;
@@ -101,6 +114,7 @@ pub fn build<U: UseModel>(
         scene,
         mesh,
         kernel,
+        path,
     };
     with_formulation!(formulation, f => with_material(f, request, user))
 }
@@ -110,6 +124,7 @@ struct Request<'a> {
     scene: &'a Scene,
     mesh: &'a PlateMesh,
     kernel: Kernel,
+    path: KernelPath,
 }
 
 fn with_material<F: Formulation, U: UseModel>(
@@ -118,6 +133,7 @@ fn with_material<F: Formulation, U: UseModel>(
         scene,
         mesh,
         kernel,
+        path,
     }: Request,
     user: U,
 ) -> Result<U::Output> {
@@ -127,7 +143,7 @@ fn with_material<F: Formulation, U: UseModel>(
         _ => None,
     };
     if let Some(plastic) = plastic {
-        let model = PlateModel::new(formulation, plastic, mesh, m.density);
+        let model = PlateModel::new(formulation, plastic, mesh, m.density).with_kernel_path(path);
         // Elastic points at elastic cost where the stiffness product is the cheaper path.
         return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
             model.with_elastic_screen(&mesh.mesh)
@@ -149,7 +165,7 @@ fn with_material<F: Formulation, U: UseModel>(
         _ => F::STIFFNESS_MATRIX_PAYS,
     };
     let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
-    let model = PlateModel::new(formulation, elastic, mesh, m.density);
+    let model = PlateModel::new(formulation, elastic, mesh, m.density).with_kernel_path(path);
     Ok(user.use_model(if stiffness_matrix {
         model.with_linear_kernel(&mesh.mesh, &elastic)
     } else {

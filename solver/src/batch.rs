@@ -1,0 +1,230 @@
+//! Batched element kernels: [`LANES`] elements at a time in struct-of-arrays form, every
+//! lane doing the scalar kernel's arithmetic in the scalar kernel's order (see
+//! [`crate::simd`] for the instruction sets and why the bits cannot change).
+//!
+//! A batch is [`LANES`] consecutive elements `b * LANES ..` inside one assembly chunk
+//! ([`crate::assembly::CHUNK`] is a multiple of [`LANES`]); the last batch of a mesh may be
+//! partial, its missing lanes padded with zero geometry and never written back. Per element
+//! the energies are summed in element order exactly as the scalar chunk does.
+//!
+//! - The stress path ([`element_response_lanes`]): strains, material update
+//!   ([`ConstitutiveModel::update_lanes`], masked radial return), forces and hourglass, all
+//!   in lanes, from each formulation's lane geometry ([`PointLanes`]).
+//! - The elastic screen of a plastic scene: lanes the screen proves elastic take `K_e u_e`;
+//!   the others go through the stress path (inactive screened lanes keep their states).
+//! - The stiffness product `K_e u_e` ([`linear_chunk`]) stays one element at a time: its 8
+//!   rows are the vector (one AVX-512 register, two AVX2 ones), because lanes of different
+//!   elements would need a gather per matrix entry where elements do not share `K_e`.
+
+use crate::assembly::CHUNK;
+use crate::elastic_screen::ElasticScreen;
+use crate::element::{gather, ElementEnergy, ElementVector, Formulation, PointGeometry};
+use crate::material::ConstitutiveModel;
+use crate::simd::{Kernel, Lanes, Mask, LANES};
+use crate::stiffness::LinearKernel;
+
+const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
+
+/// Element displacement vectors of a batch: dof x lanes, m.
+pub type VectorLanes = [Lanes; 8];
+
+/// [`PointGeometry`] of one point in [`LANES`] elements.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PointLanes {
+    /// dN_a/dx per lane, 1/m
+    pub dndx: [Lanes; 4],
+    /// dN_a/dy per lane, 1/m
+    pub dndy: [Lanes; 4],
+    /// det J per lane
+    pub det_j: Lanes,
+}
+
+impl PointLanes {
+    /// The lanes of `points` (at most [`LANES`]; missing lanes are zero).
+    pub fn of(points: &[PointGeometry]) -> PointLanes {
+        let mut g = PointLanes::default();
+        for (l, p) in points.iter().enumerate() {
+            for a in 0..4 {
+                g.dndx[a].0[l] = p.dndx[a];
+                g.dndy[a].0[l] = p.dndy[a];
+            }
+            g.det_j.0[l] = p.det_j;
+        }
+        g
+    }
+
+    /// [`PointGeometry::strain`] in lanes: components `[xx, yy, 0, gamma_xy]`.
+    #[inline(always)]
+    pub fn strain(&self, u: &VectorLanes) -> [Lanes; 4] {
+        let zero = Lanes::splat(0.0);
+        let (mut xx, mut yy, mut xy) = (zero, zero, zero);
+        for a in 0..4 {
+            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
+            xx += self.dndx[a] * ux;
+            yy += self.dndy[a] * uy;
+            xy += self.dndy[a] * ux + self.dndx[a] * uy;
+        }
+        [xx, yy, zero, xy]
+    }
+
+    /// [`PointGeometry::dilatation`] in lanes (an iterator sum: it starts from -0.0).
+    #[inline(always)]
+    pub fn dilatation(&self, u: &VectorLanes) -> Lanes {
+        let mut d = Lanes::splat(-0.0);
+        for a in 0..4 {
+            d += self.dndx[a] * u[2 * a] + self.dndy[a] * u[2 * a + 1];
+        }
+        d
+    }
+
+    /// [`PointGeometry::add_divergence`] in lanes.
+    #[inline(always)]
+    pub fn add_divergence(&self, w: Lanes, s: &[Lanes; 4], f: &mut VectorLanes) {
+        for a in 0..4 {
+            f[2 * a] += w * (self.dndx[a] * s[0] + self.dndy[a] * s[3]);
+            f[2 * a + 1] += w * (self.dndy[a] * s[1] + self.dndx[a] * s[3]);
+        }
+    }
+}
+
+/// Element energies of a batch, J per lane.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EnergyLanes {
+    pub strain: Lanes,
+    pub plastic_work: Lanes,
+    pub hourglass: Lanes,
+}
+
+impl EnergyLanes {
+    #[inline(always)]
+    pub fn lane(&self, l: usize) -> ElementEnergy {
+        ElementEnergy {
+            strain: self.strain.0[l],
+            plastic_work: self.plastic_work.0[l],
+            hourglass: self.hourglass.0[l],
+        }
+    }
+}
+
+/// [`crate::element::element_response`] for batch `b` in lanes: forces (dof x lanes) and
+/// energies, updating the states of the `active` lanes (`states`: the chunk's, lane `l`'s
+/// points from `first_state + l * POINTS`).
+#[inline(always)]
+pub fn element_response_lanes<F: Formulation, M: ConstitutiveModel>(
+    formulation: &F,
+    material: &M,
+    b: usize,
+    u: &VectorLanes,
+    states: &mut [M::State],
+    first_state: usize,
+    active: &Mask,
+) -> (VectorLanes, EnergyLanes) {
+    let strains = formulation.strains_lanes(b, u);
+    let w = formulation.weights_lanes(b);
+    let mut stresses = [[Lanes::splat(0.0); 4]; 4];
+    let mut energy = EnergyLanes::default();
+    for p in 0..F::POINTS {
+        let r = material.update_lanes(&strains[p], states, first_state + p, F::POINTS, active);
+        stresses[p] = r.stress;
+        energy.strain += w[p] * r.strain_energy_density;
+        energy.plastic_work += w[p] * r.plastic_work_density;
+    }
+    let mut f = formulation.forces_lanes(b, &stresses);
+    energy.hourglass = formulation.add_hourglass_lanes(b, u, &mut f);
+    (f, energy)
+}
+
+/// The stress-path chunk kernel in batches (the elastic `screen` first where there is one):
+/// forces of the chunk's elements from `first` into `forces`, their states updated, the
+/// chunk's energies summed in element order.
+pub struct StressPathChunk<'a, F: Formulation, M: ConstitutiveModel> {
+    pub formulation: &'a F,
+    pub material: &'a M,
+    pub screen: Option<&'a ElasticScreen>,
+    /// Nodal displacements, m.
+    pub u: &'a [f64],
+    pub first: usize,
+    pub forces: &'a mut [ElementVector],
+    pub states: &'a mut [M::State],
+}
+
+impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> {
+    type Output = ElementEnergy;
+    #[inline(always)]
+    fn run(self) -> ElementEnergy {
+        let StressPathChunk {
+            formulation,
+            material,
+            screen,
+            u,
+            first,
+            forces,
+            states,
+        } = self;
+        let mut energy = ElementEnergy::default();
+        for (k0, batch_forces) in (0..).step_by(LANES).zip(forces.chunks_mut(LANES)) {
+            let e0 = first + k0;
+            let mut ue = [Lanes::splat(0.0); 8];
+            let mut active = [false; LANES];
+            let mut screened = [None; LANES];
+            for l in 0..batch_forces.len() {
+                let e = gather(formulation.nodes(e0 + l), u);
+                for (j, &x) in e.iter().enumerate() {
+                    ue[j].0[l] = x;
+                }
+                let lane_states = &states[(k0 + l) * F::POINTS..(k0 + l + 1) * F::POINTS];
+                screened[l] =
+                    screen.and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states));
+                active[l] = screened[l].is_none();
+            }
+            let lanes = active.iter().any(|&a| a).then(|| {
+                let first_state = k0 * F::POINTS;
+                let b = e0 / LANES;
+                element_response_lanes(formulation, material, b, &ue, states, first_state, &active)
+            });
+            for (l, fe) in batch_forces.iter_mut().enumerate() {
+                let (force, en) = match (screened[l], &lanes) {
+                    (Some(r), _) => r,
+                    (None, Some((f, en))) => {
+                        let mut fe = [0.0; 8];
+                        for (x, lanes) in fe.iter_mut().zip(f) {
+                            *x = lanes.0[l];
+                        }
+                        (fe, en.lane(l))
+                    }
+                    (None, None) => unreachable!("an unscreened lane is active"),
+                };
+                *fe = force;
+                energy += en;
+            }
+        }
+        energy
+    }
+}
+
+/// The stiffness-product chunk kernel (`K_e u_e` element by element, each a vector over the
+/// matrix rows).
+pub struct LinearChunk<'a, F: Formulation> {
+    pub kernel: &'a LinearKernel,
+    pub formulation: &'a F,
+    /// Nodal displacements, m.
+    pub u: &'a [f64],
+    pub first: usize,
+    pub forces: &'a mut [ElementVector],
+}
+
+impl<F: Formulation> Kernel for LinearChunk<'_, F> {
+    type Output = ElementEnergy;
+    #[inline(always)]
+    fn run(self) -> ElementEnergy {
+        let mut energy = ElementEnergy::default();
+        for (k, fe) in self.forces.iter_mut().enumerate() {
+            let (force, en) = self
+                .kernel
+                .element(self.formulation, self.first + k, self.u);
+            *fe = force;
+            energy += en;
+        }
+        energy
+    }
+}

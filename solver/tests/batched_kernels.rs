@@ -1,0 +1,199 @@
+//! The batched element kernels (`impact_solver::batch`, on this processor's best instruction
+//! set) against the scalar kernels, the reference: forces, energies and material states must
+//! be BIT-IDENTICAL, element by element and over whole runs.
+//! - Element level: every element x material (elastic by stiffness matrix and by stress path,
+//!   von Mises with linear and with tabulated hardening, with the elastic screen where the
+//!   solver uses it), seeded random distorted meshes whose element counts are not multiples
+//!   of the lane count (and span several chunks), random displacement fields that load some
+//!   elements past yield while others stay elastic, unload them and reverse them.
+//! - Whole runs: the example and paper scenes' summaries and histories, bit for bit.
+
+use std::path::Path;
+
+use impact_solver::element::Formulation;
+use impact_solver::integrator::PlateModel;
+use impact_solver::material::ConstitutiveModel;
+use impact_solver::mesh::PlateMesh;
+use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::scene::{ElementKind, Hardening, Plasticity};
+use impact_solver::simd::{Isa, KernelPath, LANES};
+use impact_solver::{simulate_on, History, Quiet, Scene};
+
+const ELASTIC: &str = include_str!("../../verification/scenes/example-elastic.yaml");
+const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
+const PAPER_ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
+const PAPER_PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
+
+const ELEMENTS: [ElementKind; 3] = [
+    ElementKind::Q4Full,
+    ElementKind::Q4Sri,
+    ElementKind::Q4OnePoint,
+];
+
+/// A small deterministic generator (SplitMix64), uniform in [-1, 1).
+struct Random(u64);
+impl Random {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+}
+
+/// Every bit a kernel call produces: nodal forces, energies and the material states.
+fn trace_of<F: Formulation, M: ConstitutiveModel>(
+    model: &mut PlateModel<F, M>,
+    u: &[f64],
+) -> Vec<String> {
+    let mut f = vec![0.0; u.len()];
+    let e = model.internal_forces(u, &mut f);
+    let mut out: Vec<String> = f.iter().map(|x| format!("{:016x}", x.to_bits())).collect();
+    for x in [e.strain, e.plastic_work, e.hourglass] {
+        out.push(format!("{:016x}", x.to_bits()));
+    }
+    // Debug prints each f64 in its shortest round-trip form (and -0.0 as such): equal
+    // strings are equal bits.
+    out.extend(model.states.iter().map(|s| format!("{s:?}")));
+    out
+}
+
+/// Runs the internal forces for each displacement field in turn, tracing every call.
+struct Trace<'a>(&'a [Vec<f64>]);
+impl UseModel for Trace<'_> {
+    type Output = Vec<Vec<String>>;
+    fn use_model<F: Formulation, M: ConstitutiveModel>(
+        self,
+        mut model: PlateModel<F, M>,
+    ) -> Vec<Vec<String>> {
+        self.0.iter().map(|u| trace_of(&mut model, u)).collect()
+    }
+}
+
+/// Displacement fields of random direction growing along x (elements near the clamp stay
+/// elastic while those at mid-span yield): loading, unloading, reversal, reloading.
+fn fields(mesh: &PlateMesh, random: &mut Random, length: f64) -> Vec<Vec<f64>> {
+    let shape: Vec<f64> = mesh
+        .mesh
+        .coords
+        .iter()
+        .flat_map(|p| [p[0], p[0]])
+        .zip(std::iter::repeat_with(|| random.next()))
+        .map(|(x, r)| r * (x / length).powi(3))
+        .collect();
+    // Strain ~ amplitude / element size; yield strain ~1.2e-3.
+    let h = length / mesh.mesh.elements.len() as f64;
+    [0.02, 0.3, 1.0, 3.0, 10.0, 6.0, -2.0, -12.0, 0.0, 25.0]
+        .iter()
+        .map(|a| shape.iter().map(|s| a * 1.2e-3 * 30.0 * h * s).collect())
+        .collect()
+}
+
+fn scene(nx: usize, ny: usize, element: ElementKind, seed: u64, table: bool) -> Scene {
+    let mut s = Scene::from_yaml(PLASTIC, Path::new("batched.yaml")).unwrap();
+    s.mesh.nx = nx;
+    s.mesh.ny = ny;
+    s.mesh.element = element;
+    s.mesh.distortion = 0.05 * (seed % 5) as f64;
+    if table {
+        s.material.plasticity = Some(Plasticity {
+            yield_stress: 250e6,
+            hardening: Hardening::Table(vec![(0.0, 250e6), (0.002, 290e6), (0.01, 320e6)]),
+        });
+    }
+    s
+}
+
+#[test]
+fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
+    let batched = KernelPath::fastest();
+    println!("batched path: {}", batched.name());
+    let mut paths = vec![KernelPath::Batched(Isa::Baseline)];
+    if batched != paths[0] {
+        paths.push(batched);
+    }
+    let mut random = Random(12);
+    let mut yielded_and_elastic = 0;
+    for (case, (nx, ny)) in [(5, 3), (13, 6), (7, 5), (31, 4)].into_iter().enumerate() {
+        // 15, 78, 35, 124 elements: partial batches, several chunks.
+        assert!((nx * ny) % LANES != 0);
+        for element in ELEMENTS {
+            for (kernel, table) in [
+                (Kernel::Elastic, false),
+                (Kernel::ElasticStressPath, false),
+                (Kernel::ElasticStiffnessMatrix, false),
+                (Kernel::Plastic, false),
+                (Kernel::Plastic, true),
+            ] {
+                let s = scene(nx, ny, element, case as u64, table);
+                let mesh = PlateMesh::new(&s.plate, &s.mesh);
+                let u = fields(&mesh, &mut random, s.plate.length);
+                let reference =
+                    model::build_on(&s, &mesh, kernel, KernelPath::Scalar, Trace(&u)).unwrap();
+                for &path in &paths {
+                    let traced = model::build_on(&s, &mesh, kernel, path, Trace(&u)).unwrap();
+                    for (call, (a, b)) in reference.iter().zip(&traced).enumerate() {
+                        assert!(
+                            a == b,
+                            "{} {kernel:?} table {table} {nx}x{ny} call {call} on {}: differs",
+                            element.name(),
+                            path.name()
+                        );
+                    }
+                }
+                if kernel == Kernel::Plastic {
+                    // The sweep must reach both branches: some points yielded, some not.
+                    let states = reference.last().unwrap();
+                    let virgin = states.iter().filter(|s| s.contains("eqps: 0.0 ")).count();
+                    let plastic = states.iter().filter(|s| s.contains("eqps: ")).count() - virgin;
+                    assert!(
+                        virgin > 0 && plastic > 0,
+                        "{virgin} virgin, {plastic} plastic"
+                    );
+                    yielded_and_elastic += 1;
+                }
+            }
+        }
+    }
+    assert_eq!(yielded_and_elastic, 4 * 3 * 2);
+}
+
+/// A whole run's summary without its timings, and its history.
+fn run(scene: &Scene, path: KernelPath) -> (serde_json::Value, History) {
+    let mut history = History::default();
+    let (summary, _) = simulate_on(scene, &mut Quiet, None, &mut history, path).unwrap();
+    let mut json = serde_json::to_value(&summary).unwrap();
+    let map = json.as_object_mut().unwrap();
+    map.retain(|k, _| !k.contains("time_s") || k.starts_with("final") || k.starts_with("dt"));
+    map.remove("ns_per_element_step");
+    (json, history)
+}
+
+#[test]
+fn whole_runs_are_bit_identical_on_both_paths() {
+    for (name, text) in [
+        ("example-elastic", ELASTIC),
+        ("example-plastic", PLASTIC),
+        ("paper-elastic", PAPER_ELASTIC),
+        ("paper-plastic", PAPER_PLASTIC),
+    ] {
+        let mut s = Scene::from_yaml(text, Path::new(name)).unwrap();
+        s.output.fields_every = None;
+        let (summary, history) = run(&s, KernelPath::Scalar);
+        let (summary_b, history_b) = run(&s, KernelPath::fastest());
+        assert_eq!(summary, summary_b, "{name}: summaries differ");
+        assert_eq!(history.columns, history_b.columns);
+        assert!(history.n_rows() > 100, "{name}: {} rows", history.n_rows());
+        let same = history
+            .values
+            .iter()
+            .zip(&history_b.values)
+            .all(|(a, b)| a.to_bits() == b.to_bits());
+        assert!(
+            same && history.values.len() == history_b.values.len(),
+            "{name}: histories differ"
+        );
+    }
+}
