@@ -163,6 +163,31 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
         markdown_table(&header, &rows)
     );
 
+    let (runs, rust_runs) = whole_runs(quick)?;
+    let header = [
+        "run",
+        "setup_s",
+        "loop_s",
+        "steps",
+        "ns_per_element_step",
+        "target",
+        "status",
+    ];
+    write_csv(&out.join("throughput-runs.csv"), &header, &runs)?;
+    println!(
+        "Whole runs (Table 1 paper scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}",
+        markdown_table(&header, &runs)
+    );
+    python_side_by_side(out, quick, &rust_runs)
+}
+
+/// Per run: its row of the whole-run table, and (kind, Rust wall time s, impulse N s) of the
+/// batched runs for the Python side by side.
+type WholeRuns = (Vec<Vec<String>>, Vec<(&'static str, f64, f64)>);
+
+/// The Table 1 paper scenes, elastic and elasto-plastic, and the elasto-plastic one on the
+/// scalar kernels (the reference of the batched ones: the same bits, before/after timing).
+fn whole_runs(quick: bool) -> anyhow::Result<WholeRuns> {
     let mut runs = Vec::new();
     // Per run: (kind, Rust wall time s, impulse N s), for the Python side by side.
     let mut rust_runs = Vec::new();
@@ -208,21 +233,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
             .into(),
         ]);
     }
-    let header = [
-        "run",
-        "setup_s",
-        "loop_s",
-        "steps",
-        "ns_per_element_step",
-        "target",
-        "status",
-    ];
-    write_csv(&out.join("throughput-runs.csv"), &header, &runs)?;
-    println!(
-        "Whole runs (Table 1 paper scenes, 80x16 q4-sri, 3 ms, best of repeats):\n{}",
-        markdown_table(&header, &runs)
-    );
-    python_side_by_side(out, quick, &rust_runs)
+    Ok((runs, rust_runs))
 }
 
 /// The same scene in the Rust solver and in the independent Python FE (scripts/indep_fe, run

@@ -9,7 +9,7 @@
 //!
 //! - The stress path ([`element_response_lanes`]): strains, material update
 //!   ([`ConstitutiveModel::update_lanes`], masked radial return), forces and hourglass, all
-//!   in lanes, from each formulation's lane geometry ([`PointLanes`]).
+//!   in lanes, from each formulation's lane geometry ([`crate::point_lanes::PointLanes`]).
 //! - The elastic screen of a plastic scene: lanes the screen proves elastic take `K_e u_e`;
 //!   the others go through the stress path (inactive screened lanes keep their states).
 //! - The stiffness product `K_e u_e` ([`linear_chunk`]) stays one element at a time: its 8
@@ -18,74 +18,13 @@
 
 use crate::assembly::CHUNK;
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{gather, ElementEnergy, ElementVector, Formulation, PointGeometry};
+use crate::element::{gather, ElementEnergy, ElementVector, Formulation};
 use crate::material::ConstitutiveModel;
+use crate::point_lanes::VectorLanes;
 use crate::simd::{Kernel, Lanes, Mask, LANES};
 use crate::stiffness::LinearKernel;
 
 const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
-
-/// Element displacement vectors of a batch: dof x lanes, m.
-pub type VectorLanes = [Lanes; 8];
-
-/// [`PointGeometry`] of one point in [`LANES`] elements.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct PointLanes {
-    /// dN_a/dx per lane, 1/m
-    pub dndx: [Lanes; 4],
-    /// dN_a/dy per lane, 1/m
-    pub dndy: [Lanes; 4],
-    /// det J per lane
-    pub det_j: Lanes,
-}
-
-impl PointLanes {
-    /// The lanes of `points` (at most [`LANES`]; missing lanes are zero).
-    pub fn of(points: &[PointGeometry]) -> PointLanes {
-        let mut g = PointLanes::default();
-        for (l, p) in points.iter().enumerate() {
-            for a in 0..4 {
-                g.dndx[a].0[l] = p.dndx[a];
-                g.dndy[a].0[l] = p.dndy[a];
-            }
-            g.det_j.0[l] = p.det_j;
-        }
-        g
-    }
-
-    /// [`PointGeometry::strain`] in lanes: components `[xx, yy, 0, gamma_xy]`.
-    #[inline(always)]
-    pub fn strain(&self, u: &VectorLanes) -> [Lanes; 4] {
-        let zero = Lanes::splat(0.0);
-        let (mut xx, mut yy, mut xy) = (zero, zero, zero);
-        for a in 0..4 {
-            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
-            xx += self.dndx[a] * ux;
-            yy += self.dndy[a] * uy;
-            xy += self.dndy[a] * ux + self.dndx[a] * uy;
-        }
-        [xx, yy, zero, xy]
-    }
-
-    /// [`PointGeometry::dilatation`] in lanes (an iterator sum: it starts from -0.0).
-    #[inline(always)]
-    pub fn dilatation(&self, u: &VectorLanes) -> Lanes {
-        let mut d = Lanes::splat(-0.0);
-        for a in 0..4 {
-            d += self.dndx[a] * u[2 * a] + self.dndy[a] * u[2 * a + 1];
-        }
-        d
-    }
-
-    /// [`PointGeometry::add_divergence`] in lanes.
-    #[inline(always)]
-    pub fn add_divergence(&self, w: Lanes, s: &[Lanes; 4], f: &mut VectorLanes) {
-        for a in 0..4 {
-            f[2 * a] += w * (self.dndx[a] * s[0] + self.dndy[a] * s[3]);
-            f[2 * a + 1] += w * (self.dndy[a] * s[1] + self.dndx[a] * s[3]);
-        }
-    }
-}
 
 /// Element energies of a batch, J per lane.
 #[derive(Debug, Clone, Copy, Default)]

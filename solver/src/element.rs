@@ -10,10 +10,10 @@
 //! counter-clockwise. Every element has out-of-plane thickness `W` (the plate width), so
 //! forces are N and volumes m^3 for the whole width.
 
-use crate::batch::{PointLanes, VectorLanes};
 use crate::error::{Error, Result};
 use crate::material::{ConstitutiveModel, Elastic, Strain, Stress};
 use crate::mesh::Mesh;
+use crate::point_lanes::{PointLanes, VectorLanes};
 use crate::simd::{Lanes, LANES};
 
 pub type ElementVector = [f64; 8];
@@ -159,6 +159,19 @@ pub trait Formulation: Sync {
     }
 }
 
+/// The lanes of `points` (at most [`LANES`]; missing lanes are zero).
+fn lanes_of(points: &[PointGeometry]) -> PointLanes {
+    let mut g = PointLanes::default();
+    for (l, p) in points.iter().enumerate() {
+        for a in 0..4 {
+            g.dndx[a].0[l] = p.dndx[a];
+            g.dndy[a].0[l] = p.dndy[a];
+        }
+        g.det_j.0[l] = p.det_j;
+    }
+    g
+}
+
 /// The lane geometry of `per_element` in batches of [`LANES`] elements.
 fn batches<T: Copy, G>(per_element: &[T], lanes: impl Fn(&[T]) -> G) -> Vec<G> {
     per_element.chunks(LANES).map(lanes).collect()
@@ -260,7 +273,7 @@ impl FullQ4 {
         Ok(FullQ4 {
             nodes: mesh.elements.clone(),
             point_lanes: batches(&points, |b| {
-                std::array::from_fn(|p| PointLanes::of(&b.iter().map(|g| g[p]).collect::<Vec<_>>()))
+                std::array::from_fn(|p| lanes_of(&b.iter().map(|g| g[p]).collect::<Vec<_>>()))
             }),
             points,
             width,
@@ -343,7 +356,7 @@ impl SelectiveQ4 {
             .collect::<Result<_>>()?;
         Ok(SelectiveQ4 {
             full: FullQ4::new(mesh, width)?,
-            centroid_lanes: batches(&centroid, PointLanes::of),
+            centroid_lanes: batches(&centroid, lanes_of),
             centroid,
         })
     }
@@ -499,7 +512,7 @@ impl OnePointQ4 {
             .map(|b| {
                 let es = b * LANES..(b * LANES + LANES).min(n);
                 let mut g = OnePointLanes {
-                    centroid: PointLanes::of(&q.centroid[es.clone()]),
+                    centroid: lanes_of(&q.centroid[es.clone()]),
                     ..Default::default()
                 };
                 for (l, e) in es.enumerate() {

@@ -28,6 +28,7 @@ pub mod model;
 pub mod out_dir;
 pub mod output;
 pub mod overrides;
+pub mod point_lanes;
 pub mod progress;
 pub mod scene;
 pub mod simd;
