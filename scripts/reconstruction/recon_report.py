@@ -10,6 +10,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+from functools import partial
 from pathlib import Path
 
 import recon_core as rc
@@ -598,7 +599,9 @@ def _title(A: Page, result: dict) -> None:
       "from `search.json` beside this file. The paper's tables are computed results of the "
       "authors' program: matching them is a code-to-literature comparison, not a validation "
       "against experiment.*")
-    A("")
+    if result["quick"]:
+        A("")
+        A("> **QUICK MODE** (smoke test, tiny budget): the numbers below are not the reconstruction.")
 
 
 def _summary(A: Page, result: dict) -> None:
@@ -608,12 +611,7 @@ def _summary(A: Page, result: dict) -> None:
     p = b["params"]
     res = c["res"]
     acc = c["acceptance"]
-    if result["quick"]:
-        A("> **QUICK MODE** (smoke test, tiny budget): the numbers below are not the reconstruction.")
-        A("")
     fails = [k for k, e in res["t1"].items() if abs(e["rel"]) > (0.05 if k.split(":")[0] in rc.ROBUST else 0.10)]
-    A("## Summary")
-    A("")
     A(f"- **Chosen set** (one parameter set for both Table 1 rows and all 14 Table 2 runs): "
       f"plate L = {p['L'] * 1e3:.0f} mm, W = {p['W'] * 1e3:.0f} mm, h = {p['h'] * 1e3:.2f} mm; "
       f"steel E = {p['E'] / 1e9:g} GPa, nu = {p['nu']}, rho = {p['rho']:g} kg/m3, yield "
@@ -638,13 +636,10 @@ def _summary(A: Page, result: dict) -> None:
     A(f"- **Search**: {len(result['evaluations'])} parameter-set evaluations, "
       f"{result['runs']['executed']} simulations run ({result['runs']['cache_hits']} from the "
       f"cache), {result['timing_s']['total'] / 60:.1f} min wall time on 2 parallel runs.")
-    A("")
 
 
 def _unknowns(A: Page, result: dict) -> None:
     """Section 1: what the lost figures leave unknown."""
-    A("## 1. What had to be reconstructed")
-    A("")
     A("Fig. 1 of the paper (plate and impactor data) is lost, with Fig. 4 (mesh, point A) and the "
       "history plots. Known: plane strain, half model, two clamped edges, rigid line-nose "
       "impactor, the contact law (4) and the algorithm; Table 1's impactor follows from the "
@@ -658,14 +653,11 @@ def _unknowns(A: Page, result: dict) -> None:
       f"E = {result['fixed']['E'] / 1e9:g} GPa, nu = {result['fixed']['nu']}, "
       f"rho = {result['fixed']['rho']:g} kg/m3 (E enters the beam response only through "
       "E W h^3, which the search covers through W and h).")
-    A("")
 
 
 def _search_method(A: Page, result: dict) -> None:
     """Section 2: the coordinates, the objective and the coarse mesh's check."""
     bud = result["budget"]
-    A("## 2. How the parameters were found")
-    A("")
     A("**Coordinates.** Beam theory makes the response depend on the plate through "
       "E' W h^3 / L^3 (stiffness), rho W h L (mass) and sigma_y W h^2 / L (fully plastic load), "
       "so (L, W, h) -> (L s, W / s^3, h s^2) leaves all three unchanged: a one-parameter "
@@ -743,7 +735,6 @@ def _search_method(A: Page, result: dict) -> None:
       "but of the discretisation under the point force (section 10). Where a column reads "
       "'fail', the literal pairing failed on the default mesh while the coarse mesh still "
       "runs (section 9).")
-    A("")
 
 
 def _search_stages(A: Page, result: dict) -> None:
@@ -797,7 +788,6 @@ def _search_stages(A: Page, result: dict) -> None:
       "points: " + "; ".join(cand) + ". The elastic rows pin the bending stiffness S much "
       "better than the thickness (the valleys run along h_eq); the elasto-plastic rows "
       "(and with them the point-A stress) decide between the basins.")
-    A("")
 
 
 def _chosen_parameters(A: Page, result: dict) -> None:
@@ -805,8 +795,6 @@ def _chosen_parameters(A: Page, result: dict) -> None:
     b = result["best"]
     p = b["params"]
     res = result["confirm"]["res"]
-    A("## 3. The chosen parameters")
-    A("")
     pl = result["polish"]
     rows = []
     for key, v in sorted(result["per_law"].items(), key=lambda kv: kv[1]["J"]):
@@ -830,15 +818,12 @@ def _chosen_parameters(A: Page, result: dict) -> None:
       "(bending only); the paper's own numbers imply about 4.9e8 N/m (reference-data/paper/README.md); "
       f"fully plastic load of the clamped beam 8 M_p / L with M_p = (2/sqrt 3) sigma_y W h^2 / 4: "
       f"{8 * (2 / math.sqrt(3)) * p['sy'] * p['W'] * p['h'] ** 2 / 4 / p['L'] / 1e3:.0f} kN.")
-    A("")
 
 
 def _table1(A: Page, result: dict, hist_plots: list[str]) -> None:
     """Section 4: Table 1 side by side, and which contact duration the paper printed."""
     c = result["confirm"]
     res = c["res"]
-    A("## 4. Table 1 side by side (default mesh)")
-    A("")
     rows = []
     for q in rc.T1_KEYS:
         e, pp = res["t1"][f"{q}:elastic"], res["t1"][f"{q}:plastic"]
@@ -880,19 +865,16 @@ def _table1(A: Page, result: dict, hist_plots: list[str]) -> None:
       "impact has a single contact interval: "
       f"{single_txt}. The report and the scenes use the end of the last interval "
       "(`contact_duration_s`, i.e. the whole contact) and list every interval.")
-    A("")
-    for f in hist_plots:
-        A(f"![{f}]({f})")
     if hist_plots:
         A("")
+    for f in hist_plots:
+        A(f"![{f}]({f})")
 
 
 def _table2(A: Page, result: dict) -> None:
     """Section 5: Table 2 side by side."""
     c = result["confirm"]
     res = c["res"]
-    A("## 5. Table 2 side by side (default mesh, m = 10 kg)")
-    A("")
     runs = {(q["table"], q["row"], q["v0"]): q for q in c["runs"]}
     rows = []
     for v0 in rc.T2_V0:
@@ -914,14 +896,11 @@ def _table2(A: Page, result: dict) -> None:
       "'identity' = |I - m (v0 - v_final)| / I of that run. Target: 3 %.")
     A("")
     A("![Table 2](table2.svg)")
-    A("")
 
 
 def _identity(A: Page, result: dict) -> None:
     """Section 6: the impulse-momentum identity."""
     c = result["confirm"]
-    A("## 6. The impulse-momentum identity")
-    A("")
     allid = [e["max_impulse_momentum_error"] for e in result["evaluations"]
              if not math.isnan(e["max_impulse_momentum_error"])]
     A(f"`impulse_momentum_error` = |trapezoidal impulse - m (v0 - v_final)| / impulse, per run. "
@@ -931,14 +910,11 @@ def _identity(A: Page, result: dict) -> None:
       "identity of the method, whatever the reading of the paper; it holds to round-off in "
       "every run, including the energy-inconsistent literal reading. (Table 2 of the paper shows "
       "the same identity to its printed digits; reference-data/paper/PROVENANCE.md.)")
-    A("")
 
 
 def _beam_family(A: Page, result: dict) -> None:
     """Section 7: the beam family and the contrasts off it."""
     fam = result["family"]
-    A("## 7. Non-uniqueness: what fits equally well, and what breaks the tie")
-    A("")
     A("**The beam family, numerically.** The chosen set moved along (L, W, h) -> "
       "(L s, W / s^3, h s^2) (40 x 8 mesh, objective J as in the search):")
     A("")
@@ -963,7 +939,6 @@ def _beam_family(A: Page, result: dict) -> None:
                      f"{f['J']:.1f}" if ok else "fails"]
                     + [pct(f["rel"].get(k)) if ok and k in f["rel"] else "-" for k in FAMILY_KEYS])
     A(md_table(["change", "L mm", "W mm", "h mm", "J"] + [FAMILY_SHORT[k] for k in FAMILY_KEYS], rows))
-    A("")
 
 
 def _tie_breakers(A: Page, result: dict) -> None:
@@ -1053,14 +1028,11 @@ def _tie_breakers(A: Page, result: dict) -> None:
           "yielding), while our fitted plate yields slightly there. Yet the tables as a whole "
           "pull the yield below the text's hint within this model (the 2.5-7.5 m/s "
           "elasto-plastic impulses need early yielding); the hint is recorded, not imposed.")
-    A("")
 
 
 def _contact_laws(A: Page, result: dict) -> None:
     """Section 8: the three readings of the contact law on the chosen set."""
     b = result["best"]
-    A("## 8. The contact law: three readings on the chosen set")
-    A("")
     A("Everything but the law is the chosen set; default mesh; force on the datum (default "
       f"pairing). Shift = relative to the chosen reading ({b['law']}).")
     A("")
@@ -1100,7 +1072,6 @@ def _contact_laws(A: Page, result: dict) -> None:
       f"row moves by at most {pct(ep_sh).lstrip('+')}: the plate yields under the load "
       "long before the contact compliance matters. Each reading re-fitted with its own plate "
       "is in section 3.")
-    A("")
 
 
 def _readings(A: Page, result: dict) -> None:
@@ -1109,8 +1080,6 @@ def _readings(A: Page, result: dict) -> None:
     b = result["best"]
     c = result["confirm"]
     res = c["res"]
-    A("## 9. Which reading reproduces the paper, and what it costs")
-    A("")
     rows = []
     for lw in rc.LAWS:
         for pr in ("default", "literal"):
@@ -1164,15 +1133,12 @@ def _readings(A: Page, result: dict) -> None:
         A("- So the paper's numbers that favour the literal reading (the elasto-plastic peak "
           "force) are the ones that depend on its discretisation; no mesh-independent statement "
           "can be made with it, and it cannot be the reproducing reading of a verification suite.")
-    A("")
 
 
 def _out_of_reach(A: Page, result: dict) -> None:
     """Section 10: what remains out of reach, and why."""
     res = result["confirm"]["res"]
     acc = result["confirm"]["acceptance"]
-    A("## 10. What remains out of reach, and why")
-    A("")
     mst = result.get("mesh_study", [])
     if mst:
         A("**Table 1 of the chosen set on four meshes** (same parameters, q4-sri half model):")
@@ -1238,15 +1204,12 @@ def _out_of_reach(A: Page, result: dict) -> None:
     A("- **All twelve Table 1 values within 10 % with one parameter set** is therefore out of "
       "reach with the energy-consistent reading on a mesh-independent basis; the best "
       f"achievable is what the chosen set gives: {acc_text(acc)}.")
-    A("")
 
 
 def _point_a_and_pulse(A: Page, result: dict) -> None:
     """Section 11: point A and the pulse scenes."""
     c = result["confirm"]
     p = result["best"]["params"]
-    A("## 11. Point A and the pulse scenes")
-    A("")
     pa = c["runs"][0]["max_von_mises_Pa"], c["runs"][1]["max_von_mises_Pa"]
     names = {"A": "mid-span, bottom surface (chosen)", "A_mid_top": "mid-span, top surface",
              "A_clamp_top": "clamped edge, top", "A_clamp_bottom": "clamped edge, bottom",
@@ -1293,7 +1256,6 @@ def _point_a_and_pulse(A: Page, result: dict) -> None:
         A("")
     A("There is no reference value: Figs. 5-6 compared the paper's program with ANSYS and are "
       "lost. These scenes are for the pulse suite's code-to-code and invariant checks.")
-    A("")
 
 
 def _conclusions(A: Page, result: dict) -> None:
@@ -1301,8 +1263,6 @@ def _conclusions(A: Page, result: dict) -> None:
     c = result["confirm"]
     p = result["best"]["params"]
     res = c["res"]
-    A("## 12. The paper's four conclusions, checked one by one")
-    A("")
     e_ = {q: res["t1"][f"{q}:elastic"]["ours"] for q in rc.T1_KEYS}
     p_ = {q: res["t1"][f"{q}:plastic"]["ours"] for q in rc.T1_KEYS}
     t2i = {(row, v): res["t2"][f"{row}:{v:g}"]["ours"] for row in ROWS for v in rc.T2_V0
@@ -1336,7 +1296,6 @@ def _conclusions(A: Page, result: dict) -> None:
     A("The radial return keeps every integration point on or inside the hardening curve "
       "(`solver/ALGORITHM.md` section 3), so 'bounded by the hardening curve' holds by "
       "construction; the check above is that the bound is what limits the stress at A.")
-    A("")
 
 
 def _tolerances(A: Page, result: dict) -> None:
@@ -1344,8 +1303,6 @@ def _tolerances(A: Page, result: dict) -> None:
     c = result["confirm"]
     res = c["res"]
     tol = result["supported_tolerances"]
-    A("## 13. Tolerances the reconstruction supports")
-    A("")
     A("For the harness (table1, momentum-impulse and pulse suites): the tolerance each "
       "quantity can honestly be given against the paper on the scenes of "
       "`verification/scenes/paper-*.yaml`. It adds to the residual of the chosen set the "
@@ -1377,14 +1334,11 @@ def _tolerances(A: Page, result: dict) -> None:
     A("")
     A("Pulse scenes: no paper reference (Figs. 5-6 lost): compare with the independent code and "
       "the invariants only.")
-    A("")
 
 
 def _files(A: Page, result: dict) -> None:
     """Section 14: the files beside the page."""
     p = result["best"]["params"]
-    A("## 14. Files")
-    A("")
     A(md_table(["file", "content"], [
         ["`search.json`", "everything: settings, every evaluation (parameters, residuals, J), "
          "grids, polish, family, confirmations, laws, pulse, timing"],
@@ -1400,28 +1354,37 @@ def _files(A: Page, result: dict) -> None:
     A("Re-run: `scripts/setup-venv.sh && cargo build --release -p impact-verification && "
       "scripts/reconstruction/reconstruct.py` (about 15 min on 2 cores; `--quick` for a smoke test under 3 min; "
       "`--report-only` rewrites this page from `search.json`).")
-    A("")
 
 
 def report_text(result: dict, hist_plots: list[str]) -> str:
-    """The page `report.md`: its sections in order, from `search.json`'s result."""
+    """The page `report.md`: its sections in order, from `search.json`'s result. Each is its
+    heading (None: it continues the section before), what its writer appends, and the blank
+    line that closes it."""
+    sections = (
+        (None, _title),
+        ("## Summary", _summary),
+        ("## 1. What had to be reconstructed", _unknowns),
+        ("## 2. How the parameters were found", _search_method),
+        (None, _search_stages),
+        ("## 3. The chosen parameters", _chosen_parameters),
+        ("## 4. Table 1 side by side (default mesh)", partial(_table1, hist_plots=hist_plots)),
+        ("## 5. Table 2 side by side (default mesh, m = 10 kg)", _table2),
+        ("## 6. The impulse-momentum identity", _identity),
+        ("## 7. Non-uniqueness: what fits equally well, and what breaks the tie", _beam_family),
+        (None, _tie_breakers),
+        ("## 8. The contact law: three readings on the chosen set", _contact_laws),
+        ("## 9. Which reading reproduces the paper, and what it costs", _readings),
+        ("## 10. What remains out of reach, and why", _out_of_reach),
+        ("## 11. Point A and the pulse scenes", _point_a_and_pulse),
+        ("## 12. The paper's four conclusions, checked one by one", _conclusions),
+        ("## 13. Tolerances the reconstruction supports", _tolerances),
+        ("## 14. Files", _files),
+    )
     page = Page()
-    _title(page, result)
-    _summary(page, result)
-    _unknowns(page, result)
-    _search_method(page, result)
-    _search_stages(page, result)
-    _chosen_parameters(page, result)
-    _table1(page, result, hist_plots)
-    _table2(page, result)
-    _identity(page, result)
-    _beam_family(page, result)
-    _tie_breakers(page, result)
-    _contact_laws(page, result)
-    _readings(page, result)
-    _out_of_reach(page, result)
-    _point_a_and_pulse(page, result)
-    _conclusions(page, result)
-    _tolerances(page, result)
-    _files(page, result)
+    for heading, write in sections:
+        if heading:
+            page(heading)
+            page("")
+        write(page, result)
+        page("")
     return "\n".join(page)
