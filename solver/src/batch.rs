@@ -15,6 +15,15 @@
 //! - The stiffness product `K_e u_e` ([`linear_chunk`]) stays one element at a time: its 8
 //!   rows are the vector (one AVX-512 register, two AVX2 ones), because lanes of different
 //!   elements would need a gather per matrix entry where elements do not share `K_e`.
+//!
+//! Limits (measured and estimated on this project's 2-core AVX-512 Xeon, 2.7 GHz): a q4-sri
+//! element-step with radial return at four points is ~700 flops, 24 of them divisions and 4
+//! square roots that bit-identity forbids replacing (`x / 3.0` is not `x * (1/3)`); at the
+//! AVX-512 divider's ~16 cycles per 8 divisions that alone is ~18 ns, so <= 30 ns is near
+//! the floor. What remains above it (callgrind, AVX2 path: ~970 instructions per q4-sri
+//! plastic element-step, over half of them moves) is the transposition between the
+//! per-element storage (displacements, forces, plastic states as arrays of structs) and the
+//! lanes: a batch-major state layout is the next step.
 
 use crate::assembly::CHUNK;
 use crate::elastic_screen::ElasticScreen;
@@ -103,38 +112,49 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
         let mut energy = ElementEnergy::default();
         for (k0, batch_forces) in (0..).step_by(LANES).zip(forces.chunks_mut(LANES)) {
             let e0 = first + k0;
-            let mut ue = [Lanes::splat(0.0); 8];
+            let mut elements = [[0.0; 8]; LANES];
             let mut active = [false; LANES];
-            let mut screened = [None; LANES];
-            for l in 0..batch_forces.len() {
-                let e = gather(formulation.nodes(e0 + l), u);
-                for (j, &x) in e.iter().enumerate() {
-                    ue[j].0[l] = x;
-                }
-                let lane_states = &states[(k0 + l) * F::POINTS..(k0 + l + 1) * F::POINTS];
-                screened[l] =
-                    screen.and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states));
-                active[l] = screened[l].is_none();
-            }
-            let lanes = active.iter().any(|&a| a).then(|| {
-                let first_state = k0 * F::POINTS;
-                let b = e0 / LANES;
-                element_response_lanes(formulation, material, b, &ue, states, first_state, &active)
-            });
+            // Screened lanes' forces go straight to `batch_forces`, their energies here.
+            let mut lane_energy = [ElementEnergy::default(); LANES];
             for (l, fe) in batch_forces.iter_mut().enumerate() {
-                let (force, en) = match (screened[l], &lanes) {
-                    (Some(r), _) => r,
-                    (None, Some((f, en))) => {
-                        let mut fe = [0.0; 8];
-                        for (x, lanes) in fe.iter_mut().zip(f) {
+                let e = gather(formulation.nodes(e0 + l), u);
+                elements[l] = e;
+                let lane_states = &states[(k0 + l) * F::POINTS..(k0 + l + 1) * F::POINTS];
+                match screen.and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states))
+                {
+                    Some((f, en)) => (*fe, lane_energy[l]) = (f, en),
+                    None => active[l] = true,
+                }
+            }
+            if active.iter().any(|&a| a) {
+                // Into lanes only when some lane takes the stress path.
+                let mut ue = [Lanes::splat(0.0); 8];
+                for (l, e) in elements.iter().enumerate() {
+                    for (j, &x) in e.iter().enumerate() {
+                        ue[j].0[l] = x;
+                    }
+                }
+                let (first_state, b) = (k0 * F::POINTS, e0 / LANES);
+                let (f, en) = element_response_lanes(
+                    formulation,
+                    material,
+                    b,
+                    &ue,
+                    states,
+                    first_state,
+                    &active,
+                );
+                for (l, fe) in batch_forces.iter_mut().enumerate() {
+                    if active[l] {
+                        for (x, lanes) in fe.iter_mut().zip(&f) {
                             *x = lanes.0[l];
                         }
-                        (fe, en.lane(l))
+                        lane_energy[l] = en.lane(l);
                     }
-                    (None, None) => unreachable!("an unscreened lane is active"),
-                };
-                *fe = force;
-                energy += en;
+                }
+            }
+            for en in &lane_energy[..batch_forces.len()] {
+                energy += *en;
             }
         }
         energy
