@@ -40,21 +40,14 @@ pub fn simulate<'py>(
             .map_err(|e| PyValueError::new_err(format!("overrides: {e}")))?,
         None => Overrides::new(),
     };
-    let pool = match threads {
-        Some(0) => return Err(PyValueError::new_err("threads must be >= 1 (or None)")),
-        Some(n) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map_err(|e| PyValueError::new_err(format!("cannot start {n} threads: {e}")))?,
-        ),
-        None => None,
-    };
+    if threads == Some(0) {
+        return Err(PyValueError::new_err("threads must be >= 1 (or None)"));
+    }
     let outcome = py.detach(|| {
         let scene = Scene::from_yaml_with(text, &overrides, &source)?;
         let run = || run(&scene, out.as_deref());
-        match &pool {
-            Some(pool) => pool.install(run),
+        match threads {
+            Some(n) => impact_solver::workers::with_threads(n, run),
             None => run(),
         }
     });

@@ -77,6 +77,12 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 }
             })
             .collect();
+        // Elastic materials have a zero-sized state and a cheap kernel.
+        let assembly = Assembly::for_mesh(
+            formulation.connectivity(),
+            mesh.mesh.n_nodes(),
+            std::mem::size_of::<M::State>() > 0,
+        );
         PlateModel {
             states: vec![M::State::default(); n * F::POINTS],
             formulation,
@@ -85,8 +91,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             inverse_mass,
             linear: None,
             screen: None,
-            // Elastic materials have a zero-sized state and a cheap kernel.
-            assembly: Assembly::for_mesh(n, std::mem::size_of::<M::State>() > 0),
+            assembly,
             kernel_path: KernelPath::fastest(),
         }
     }

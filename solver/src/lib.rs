@@ -35,6 +35,7 @@ pub mod simd;
 pub mod stable_step;
 pub mod stiffness;
 pub mod summary;
+pub mod workers;
 pub mod yaml_field;
 
 use std::time::Instant;

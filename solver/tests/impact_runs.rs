@@ -271,21 +271,28 @@ fn the_pulse_ends_where_the_force_stops_being_applied() {
     );
 }
 
-/// Multithreaded assembly (plastic, >= 4096 elements) must give the same bits on one
-/// thread and on two: the chunking and the summation order do not depend on the threads.
+/// Multithreaded assembly (plastic, >= 4096 elements: a team of persistent threads, node
+/// forces gathered in element order) must give the same bits on one thread and on two: the
+/// chunking and the summation order do not depend on the threads.
 #[test]
 fn results_are_bit_identical_on_one_and_two_threads() {
     let mut scene = small(PLASTIC);
     scene.mesh.nx = 128;
     scene.mesh.ny = 32;
     scene.time.end = End::At(5e-5);
-    let on = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| run(&scene))
+    let on = |threads: usize| impact_solver::workers::with_threads(threads, || run(&scene));
+    // The second run really assembles on two threads (a plastic model of this size).
+    let mesh = impact_solver::mesh::PlateMesh::new(&scene.plate, &scene.mesh);
+    let assembly = |threads: usize| {
+        impact_solver::workers::with_threads(threads, || {
+            impact_solver::assembly::Assembly::for_mesh(
+                &mesh.mesh.elements,
+                mesh.mesh.n_nodes(),
+                true,
+            )
+        })
     };
+    assert_eq!((assembly(1).threads(), assembly(2).threads()), (1, 2));
     let (one, two) = (on(1), on(2));
     assert!(one
         .history
