@@ -12,8 +12,13 @@ use crate::workers::{part_range, threads_here, Team};
 /// Elements per task.
 pub const CHUNK: usize = 64;
 
-/// Meshes with fewer elements run on one thread (see [`Assembly::for_mesh`]).
-pub const PARALLEL_MIN_ELEMENTS: usize = 4096;
+/// Meshes with fewer elements run on one thread (see [`Assembly::for_mesh`]). Measured
+/// (2026-11-23, this 2-core machine idle, paper plastic scene, batched kernels, wall time of
+/// 1 / 2 threads): 20 x 4 (80 elements) 0.042-0.053 / 0.048-0.074 s, no gain; 40 x 8 (320)
+/// 0.25-0.37 / 0.19-0.27 s, 1.3x; 80 x 16 (1280) 2.2-3.0 / 1.49-1.60 s, 1.45-1.9x. The
+/// elastic stiffness product did not gain at 40 x 8 to 160 x 32 (1.0-1.3x slower: the step is
+/// the nodal loops'), so only the plastic stress path runs on several threads.
+pub const PARALLEL_MIN_ELEMENTS: usize = 256;
 
 /// Buffers of the chunked assembly (allocated once, reused every step), and the team of
 /// threads when it runs on several.
@@ -27,6 +32,57 @@ pub struct Assembly {
 struct Parallel {
     team: Team,
     incidence: NodeIncidence,
+    /// Per part: the nodes all of whose elements are in the part's elements (it sums them
+    /// in the same job, one hand-off per assembly).
+    own_nodes: Vec<Vec<u32>>,
+    /// Nodes with elements in two or more parts, summed by the caller after the job.
+    shared_nodes: Vec<u32>,
+}
+
+impl Parallel {
+    fn new(connectivity: &[[u32; 4]], n_nodes: usize, threads: usize) -> Parallel {
+        let n_chunks = connectivity.len().div_ceil(CHUNK);
+        // The part of each node's elements, or Some(None) once two parts meet at it.
+        let mut part_of: Vec<Option<Option<usize>>> = vec![None; n_nodes];
+        for part in 0..threads {
+            for e in part_elements(n_chunks, connectivity.len(), threads, part) {
+                for &n in &connectivity[e] {
+                    let slot = &mut part_of[n as usize];
+                    *slot = match *slot {
+                        None => Some(Some(part)),
+                        Some(Some(p)) if p == part => Some(Some(part)),
+                        _ => Some(None),
+                    };
+                }
+            }
+        }
+        let mut own_nodes = vec![Vec::new(); threads];
+        let mut shared_nodes = Vec::new();
+        for (n, part) in part_of.iter().enumerate() {
+            match part {
+                Some(Some(p)) => own_nodes[*p].push(n as u32),
+                Some(None) => shared_nodes.push(n as u32),
+                None => {} // on no element: its force stays 0
+            }
+        }
+        Parallel {
+            team: Team::new(threads),
+            incidence: NodeIncidence::new(connectivity, n_nodes),
+            own_nodes,
+            shared_nodes,
+        }
+    }
+}
+
+/// The elements of part `part` of `parts`: whole chunks, contiguous.
+fn part_elements(
+    n_chunks: usize,
+    n_elements: usize,
+    parts: usize,
+    part: usize,
+) -> std::ops::Range<usize> {
+    let chunks = part_range(n_chunks, parts, part);
+    (chunks.start * CHUNK).min(n_elements)..(chunks.end * CHUNK).min(n_elements)
 }
 
 impl Assembly {
@@ -37,10 +93,7 @@ impl Assembly {
         Assembly {
             element_forces: vec![[0.0; 8]; n_elements],
             chunk_energy: vec![ElementEnergy::default(); n_elements.div_ceil(CHUNK)],
-            parallel: (threads > 1).then(|| Parallel {
-                team: Team::new(threads),
-                incidence: NodeIncidence::new(connectivity, n_nodes),
-            }),
+            parallel: (threads > 1).then(|| Parallel::new(connectivity, n_nodes, threads)),
         }
     }
 
@@ -78,35 +131,48 @@ impl Assembly {
         };
         let per_chunk = CHUNK * points.max(1);
         match &self.parallel {
-            Some(Parallel { team, incidence }) => {
+            Some(parallel) => {
+                let (team, incidence) = (&parallel.team, &parallel.incidence);
+                let n_elements = self.element_forces.len();
                 let forces = Disjoint::new(&mut self.element_forces);
                 let energies = Disjoint::new(&mut self.chunk_energy);
                 let states = Disjoint::new(states);
+                f.fill(0.0);
+                let out = Disjoint::new(f);
                 let n_chunks = energies.len;
                 team.run(&|part| {
-                    for c in part_range(n_chunks, team.size(), part) {
-                        // SAFETY: chunk c's forces, energy and states belong to this part only.
-                        let (fe, en, st) = unsafe {
-                            (
-                                forces.slice(c * CHUNK..((c + 1) * CHUNK).min(forces.len)),
-                                energies.slice(c..c + 1),
-                                states.slice(
-                                    (c * per_chunk).min(states.len)
-                                        ..((c + 1) * per_chunk).min(states.len),
-                                ),
-                            )
-                        };
-                        en[0] = chunk(c, fe, st);
+                    let elements = part_elements(n_chunks, n_elements, team.size(), part);
+                    let chunks = part_range(n_chunks, team.size(), part);
+                    // SAFETY: the part's chunks (their forces, energies and states) and its
+                    // own nodes' dofs belong to this part only.
+                    let (fe, en, st) = unsafe {
+                        (
+                            forces.slice(elements.clone()),
+                            energies.slice(chunks.clone()),
+                            states.slice(
+                                (chunks.start * per_chunk).min(states.len)
+                                    ..(chunks.end * per_chunk).min(states.len),
+                            ),
+                        )
+                    };
+                    for (k, c) in chunks.enumerate() {
+                        let e = (k * CHUNK)..((k + 1) * CHUNK).min(fe.len());
+                        let s = (k * per_chunk).min(st.len())..((k + 1) * per_chunk).min(st.len());
+                        en[k] = chunk(c, &mut fe[e], &mut st[s]);
+                    }
+                    for &n in &parallel.own_nodes[part] {
+                        let n = n as usize;
+                        let (fx, fy) = incidence.node(n, |e| &fe[e - elements.start]);
+                        // SAFETY: an own node belongs to this part only.
+                        unsafe { out.slice(2 * n..2 * n + 2) }.copy_from_slice(&[fx, fy]);
                     }
                 });
-                let forces = &self.element_forces;
-                let out = Disjoint::new(f);
-                team.run(&|part| {
-                    let range = part_range(incidence.n_nodes(), team.size(), part);
-                    // SAFETY: the dofs of this part's nodes belong to this part only.
-                    let f = unsafe { out.slice(2 * range.start..2 * range.end) };
-                    incidence.gather(forces, range, f);
-                });
+                for &n in &parallel.shared_nodes {
+                    let n = n as usize;
+                    let (fx, fy) = incidence.node(n, |e| &self.element_forces[e]);
+                    f[2 * n] = fx;
+                    f[2 * n + 1] = fy;
+                }
             }
             None => {
                 for (c, ((forces, energy), states)) in self
@@ -183,23 +249,18 @@ impl NodeIncidence {
         NodeIncidence { start, entries }
     }
 
-    fn n_nodes(&self) -> usize {
-        self.start.len() - 1
-    }
-
-    /// The nodal forces of the nodes `range` into `f` (their dofs, overwritten): each the sum
-    /// of its element entries in element order, starting from 0 as the scatter does.
-    fn gather(&self, forces: &[ElementVector], range: std::ops::Range<usize>, f: &mut [f64]) {
-        for (k, n) in range.enumerate() {
-            let (mut fx, mut fy) = (0.0, 0.0);
-            for &ea in &self.entries[self.start[n] as usize..self.start[n + 1] as usize] {
-                let (e, a) = (ea as usize / 4, ea as usize % 4);
-                fx += forces[e][2 * a];
-                fy += forces[e][2 * a + 1];
-            }
-            f[2 * k] = fx;
-            f[2 * k + 1] = fy;
+    /// The force `(x, y)` on node `n`: the sum of its element entries in element order,
+    /// starting from 0 as the scatter does (`forces_of(e)`: element `e`'s force vector).
+    #[inline(always)]
+    fn node<'f>(&self, n: usize, forces_of: impl Fn(usize) -> &'f ElementVector) -> (f64, f64) {
+        let (mut fx, mut fy) = (0.0, 0.0);
+        for &ea in &self.entries[self.start[n] as usize..self.start[n + 1] as usize] {
+            let (e, a) = (ea as usize / 4, ea as usize % 4);
+            let fe = forces_of(e);
+            fx += fe[2 * a];
+            fy += fe[2 * a + 1];
         }
+        (fx, fy)
     }
 }
 
@@ -308,7 +369,9 @@ mod tests {
         }
         let incidence = NodeIncidence::new(&conn, 9);
         let mut f = [f64::NAN; 18];
-        incidence.gather(&forces, 0..9, &mut f);
+        for n in 0..9 {
+            (f[2 * n], f[2 * n + 1]) = incidence.node(n, |e| &forces[e]);
+        }
         assert_eq!(f[8], 0.0);
         assert_ne!(((parts[3] + parts[1]) + parts[2]) + parts[0], 0.0);
         let mut scattered = [0.0; 18];
