@@ -66,7 +66,7 @@ def simulate(
             a non-empty folder holding no earlier run are refused; a run whose memory estimate
             exceeds the memory available is refused. None: nothing is written.
         threads: threads for the element loop (>= 1). The solver assembles element forces on
-            several threads only for costly kernels on large meshes (elasto-plastic, >= 4096
+            several threads only for costly kernels on large meshes (elasto-plastic, >= 256
             elements); every other run uses one thread whatever this says. Results are
             bit-identical for every thread count. None: one per core (as the CLI).
         overrides: values set at dotted scene keys before validation, with the rules of a
