@@ -35,7 +35,8 @@ struct Parallel {
     /// Per part: the nodes all of whose elements are in the part's elements (it sums them
     /// in the same job, one hand-off per assembly).
     own_nodes: Vec<Vec<u32>>,
-    /// Nodes with elements in two or more parts, summed by the caller after the job.
+    /// Nodes with elements in two or more parts (or in none: their sum is 0), summed by the
+    /// caller after the job. With `own_nodes` every node is written every step.
     shared_nodes: Vec<u32>,
 }
 
@@ -61,8 +62,7 @@ impl Parallel {
         for (n, part) in part_of.iter().enumerate() {
             match part {
                 Some(Some(p)) => own_nodes[*p].push(n as u32),
-                Some(None) => shared_nodes.push(n as u32),
-                None => {} // on no element: its force stays 0
+                Some(None) | None => shared_nodes.push(n as u32),
             }
         }
         Parallel {
@@ -137,7 +137,6 @@ impl Assembly {
                 let forces = Disjoint::new(&mut self.element_forces);
                 let energies = Disjoint::new(&mut self.chunk_energy);
                 let states = Disjoint::new(states);
-                f.fill(0.0);
                 let out = Disjoint::new(f);
                 let n_chunks = energies.len;
                 team.run(&|part| {
@@ -301,7 +300,8 @@ mod tests {
     //! threads, on a mesh whose element count is not a multiple of the chunk.
     use super::*;
 
-    /// A 13 x 11 structured mesh (143 elements, 168 nodes), counter-clockwise nodes.
+    /// A 13 x 11 structured mesh (143 elements, 168 nodes), counter-clockwise nodes, and one
+    /// more node on no element (its force must come out 0 on every path).
     fn grid() -> (Vec<[u32; 4]>, usize) {
         let (nx, ny) = (13u32, 11u32);
         let id = |i: u32, j: u32| j * (nx + 1) + i;
@@ -310,7 +310,7 @@ mod tests {
                 (0..nx).map(move |i| [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
             })
             .collect();
-        (conn, ((nx + 1) * (ny + 1)) as usize)
+        (conn, ((nx + 1) * (ny + 1) + 1) as usize)
     }
 
     /// A kernel with irregular values and a per-point state it counts up.
@@ -351,6 +351,7 @@ mod tests {
     fn every_thread_count_gives_the_sequential_bits() {
         let one = assembled(1);
         assert!(one.0.iter().all(|&b| f64::from_bits(b).is_finite()));
+        assert_eq!(one.0[one.0.len() - 2..], [0.0f64.to_bits(); 2]);
         for threads in 2..=4 {
             assert_eq!(assembled(threads), one, "{threads} threads");
         }
