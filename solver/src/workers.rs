@@ -170,10 +170,15 @@ thread_local! {
 
 /// Runs `f` with models built on this thread using up to `threads` (>= 1) threads.
 pub fn with_threads<T>(threads: usize, f: impl FnOnce() -> T) -> T {
-    let before = THREADS.with(|t| t.replace(Some(threads.max(1))));
-    let out = f();
-    THREADS.with(|t| t.set(before));
-    out
+    /// Puts the earlier setting back when `f` returns or unwinds.
+    struct Restore(Option<usize>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            THREADS.with(|t| t.set(self.0));
+        }
+    }
+    let _restore = Restore(THREADS.with(|t| t.replace(Some(threads.max(1)))));
+    f()
 }
 
 /// Threads a model built here may use: the count set by [`with_threads`]; else 1 on a rayon
@@ -271,6 +276,15 @@ mod tests {
             let ns = started.elapsed().as_nanos() as f64 / n as f64;
             println!("team of {size}: {ns:.0} ns per empty job");
         }
+    }
+
+    #[test]
+    fn with_threads_sets_the_count_for_its_call_only_even_when_it_panics() {
+        let outside = threads_here();
+        assert_eq!(with_threads(3, threads_here), 3);
+        let r = catch_unwind(|| with_threads(5, || panic!("a run fails")));
+        assert!(r.is_err());
+        assert_eq!(threads_here(), outside);
     }
 
     #[test]
