@@ -64,13 +64,15 @@ pub fn timed_on(
     Ok((best.0, best.1, last))
 }
 
-/// Writes rows as CSV (a header, then values; strings as given).
+/// Writes rows as CSV (a header, then values; strings as given, quoted only where a value
+/// holds a comma, a quote or a line break, e.g. a stability note).
 pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> anyhow::Result<()> {
-    let mut text = header.join(",") + "\n";
+    let mut w = csv::Writer::from_path(path)?;
+    w.write_record(header)?;
     for r in rows {
-        text += &(r.join(",") + "\n");
+        w.write_record(r)?;
     }
-    std::fs::write(path, text)?;
+    w.flush()?;
     Ok(())
 }
 
