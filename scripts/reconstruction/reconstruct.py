@@ -755,7 +755,7 @@ def main() -> int:
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "command": "scripts/reconstruction/reconstruct.py" + (" --quick" if a.quick else ""),
         "script_sha256": {f: rc.sha256_file(HERE / f) for f in
-                          ("reconstruct.py", "recon_core.py", "recon_report.py")},
+                          ("reconstruct.py", "recon_core.py") + recon_report.REPORT_WRITERS},
         "solver_commit": git("rev-parse", "HEAD"),
         "solver_dirty": git("status", "--porcelain", "--", "solver") != "",
         "solver_binary_sha256": S.runner.bin_sha,
