@@ -7,9 +7,9 @@
 //! partial, its missing lanes padded with zero geometry and never written back. Per element
 //! the energies are summed in element order exactly as the scalar chunk does.
 //!
-//! - The stress path ([`element_response_lanes`]): strains, material update
-//!   ([`ConstitutiveModel::update_lanes`], masked radial return), forces and hourglass, all
-//!   in lanes, from each formulation's lane geometry ([`crate::point_lanes::PointLanes`]).
+//! - The stress path: [`crate::element::response`] in lanes (strains, material update with
+//!   the masked radial return, forces and hourglass), the scalar path's kernels instantiated
+//!   with [`Lanes`], on each formulation's batch of geometry.
 //! - The elastic screen of a plastic scene: lanes the screen proves elastic take `K_e u_e`;
 //!   the others go through the stress path (inactive screened lanes keep their states).
 //! - The stiffness product `K_e u_e` ([`linear_chunk`]) stays one element at a time: its 8
@@ -27,60 +27,12 @@
 
 use crate::assembly::CHUNK;
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{gather, ElementEnergy, ElementVector, Formulation};
+use crate::element::{gather, response, ElementEnergy, ElementVector, Formulation};
 use crate::material::ConstitutiveModel;
-use crate::point_lanes::VectorLanes;
-use crate::simd::{Kernel, Lanes, Mask, LANES};
+use crate::simd::{Kernel, Lanes, LANES};
 use crate::stiffness::LinearKernel;
 
 const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
-
-/// Element energies of a batch, J per lane.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct EnergyLanes {
-    pub strain: Lanes,
-    pub plastic_work: Lanes,
-    pub hourglass: Lanes,
-}
-
-impl EnergyLanes {
-    #[inline(always)]
-    pub fn lane(&self, l: usize) -> ElementEnergy {
-        ElementEnergy {
-            strain: self.strain.0[l],
-            plastic_work: self.plastic_work.0[l],
-            hourglass: self.hourglass.0[l],
-        }
-    }
-}
-
-/// [`crate::element::element_response`] for batch `b` in lanes: forces (dof x lanes) and
-/// energies, updating the states of the `active` lanes (`states`: the chunk's, lane `l`'s
-/// points from `first_state + l * POINTS`).
-#[inline(always)]
-pub fn element_response_lanes<F: Formulation, M: ConstitutiveModel>(
-    formulation: &F,
-    material: &M,
-    b: usize,
-    u: &VectorLanes,
-    states: &mut [M::State],
-    first_state: usize,
-    active: &Mask,
-) -> (VectorLanes, EnergyLanes) {
-    let strains = formulation.strains_lanes(b, u);
-    let w = formulation.weights_lanes(b);
-    let mut stresses = [[Lanes::splat(0.0); 4]; 4];
-    let mut energy = EnergyLanes::default();
-    for p in 0..F::POINTS {
-        let r = material.update_lanes(&strains[p], states, first_state + p, F::POINTS, active);
-        stresses[p] = r.stress;
-        energy.strain += w[p] * r.strain_energy_density;
-        energy.plastic_work += w[p] * r.plastic_work_density;
-    }
-    let mut f = formulation.forces_lanes(b, &stresses);
-    energy.hourglass = formulation.add_hourglass_lanes(b, u, &mut f);
-    (f, energy)
-}
 
 /// The stress-path chunk kernel in batches (the elastic `screen` first where there is one):
 /// forces of the chunk's elements from `first` into `forces`, their states updated, the
@@ -100,15 +52,9 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
     type Output = ElementEnergy;
     #[inline(always)]
     fn run(self) -> ElementEnergy {
-        let StressPathChunk {
-            formulation,
-            material,
-            screen,
-            u,
-            first,
-            forces,
-            states,
-        } = self;
+        let (formulation, material, u, first) =
+            (self.formulation, self.material, self.u, self.first);
+        let (forces, states) = (self.forces, self.states);
         let mut energy = ElementEnergy::default();
         for (k0, batch_forces) in (0..).step_by(LANES).zip(forces.chunks_mut(LANES)) {
             let e0 = first + k0;
@@ -120,7 +66,9 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
                 let e = gather(formulation.nodes(e0 + l), u);
                 elements[l] = e;
                 let lane_states = &states[(k0 + l) * F::POINTS..(k0 + l + 1) * F::POINTS];
-                match screen.and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states))
+                match self
+                    .screen
+                    .and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states))
                 {
                     Some((f, en)) => (*fe, lane_energy[l]) = (f, en),
                     None => active[l] = true,
@@ -134,16 +82,8 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
                         ue[j].0[l] = x;
                     }
                 }
-                let (first_state, b) = (k0 * F::POINTS, e0 / LANES);
-                let (f, en) = element_response_lanes(
-                    formulation,
-                    material,
-                    b,
-                    &ue,
-                    states,
-                    first_state,
-                    &active,
-                );
+                let lanes = (&mut *states, k0 * F::POINTS, active);
+                let (f, en) = response(formulation, material, e0 / LANES, &ue, lanes);
                 for (l, fe) in batch_forces.iter_mut().enumerate() {
                     if active[l] {
                         for (x, lanes) in fe.iter_mut().zip(&f) {

@@ -4,43 +4,43 @@
 //! Strains are `[xx, yy, zz, gamma_xy]` (engineering shear; `zz` is 0 except in the B-bar
 //! modified strain), stresses `[xx, yy, zz, xy]`, in Pa.
 
+use crate::real::Real;
 use crate::scene::{Hardening, Material as MaterialSpec};
-use crate::simd::{Lanes, Mask, LANES};
 
 pub type Strain = [f64; 4];
 pub type Stress = [f64; 4];
 
-/// What a material returns at one integration point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointResponse {
-    pub stress: Stress,
+/// What a material returns at one integration point of [`Real::LANES`] elements (one for
+/// `R = f64`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Response<R> {
+    /// Components `[xx, yy, zz, xy]`, Pa.
+    pub stress: [R; 4],
     /// Elastic strain energy density, J/m^3.
-    pub strain_energy_density: f64,
+    pub strain_energy_density: R,
     /// Plastic work density dissipated in this update, J/m^3.
-    pub plastic_work_density: f64,
+    pub plastic_work_density: R,
 }
+
+/// What a material returns at one integration point of one element.
+pub type PointResponse = Response<f64>;
 
 /// A constitutive model with its per-point state. Elastic models have a zero-sized state, so
 /// an elastic run allocates no plasticity state at all.
 pub trait ConstitutiveModel: Sync {
     type State: Copy + Default + Send + Sync + std::fmt::Debug;
-    /// Stress for the total strain, updating the state (called once per point per step).
-    fn update(&self, strain: &Strain, state: &mut Self::State) -> PointResponse;
-    /// [`ConstitutiveModel::update`] at one point of [`LANES`] elements (strain components x
-    /// lanes): lane `l`'s state is `states[first + l * stride]` when `active[l]`; an inactive
-    /// lane's state is neither read nor written and its results are unspecified. Bit-identical
-    /// to `update` lane by lane (the default runs it lane by lane).
-    #[inline(always)]
-    fn update_lanes(
+    /// Stress for the total strain (components x lanes) at one point of [`Real::LANES`]
+    /// elements, updating the states (called once per point per step): lane `l`'s state is
+    /// `states[first + l * stride]` when `active` has lane `l`; an inactive lane's state is
+    /// neither read nor written and its results are unspecified.
+    fn update<R: Real>(
         &self,
-        strain: &[Lanes; 4],
+        strain: &[R; 4],
         states: &mut [Self::State],
         first: usize,
         stride: usize,
-        active: &Mask,
-    ) -> LaneResponse {
-        update_each_lane(self, strain, states, first, stride, active)
-    }
+        active: R::Mask,
+    ) -> Response<R>;
     /// Stress for the total strain and a converged state, without changing it.
     fn stress(&self, strain: &Strain, state: &Self::State) -> Stress;
     /// Equivalent plastic strain of a state.
@@ -58,41 +58,31 @@ pub trait ConstitutiveModel: Sync {
     }
 }
 
-/// What a material returns at one integration point of [`LANES`] elements.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct LaneResponse {
-    /// Components `[xx, yy, zz, xy]` x lanes, Pa.
-    pub stress: [Lanes; 4],
-    /// J/m^3
-    pub strain_energy_density: Lanes,
-    /// J/m^3
-    pub plastic_work_density: Lanes,
-}
-
-/// The lane-by-lane fallback of [`ConstitutiveModel::update_lanes`] (scalar `update` per lane).
+/// `update(strain lane l, state l)` for each active lane `l` (a model with no lane kernel).
 #[inline(always)]
-pub fn update_each_lane<M: ConstitutiveModel + ?Sized>(
-    material: &M,
-    strain: &[Lanes; 4],
-    states: &mut [M::State],
+fn each_lane<R: Real, S>(
+    strain: &[R; 4],
+    states: &mut [S],
     first: usize,
     stride: usize,
-    active: &Mask,
-) -> LaneResponse {
-    let mut out = LaneResponse::default();
-    for l in (0..LANES).filter(|&l| active[l]) {
+    active: R::Mask,
+    update: impl Fn(&Strain, &mut S) -> PointResponse,
+) -> Response<R> {
+    let mut out = Response::<R>::default();
+    for l in (0..R::LANES).filter(|&l| R::on(active, l)) {
         let e = [
-            strain[0].0[l],
-            strain[1].0[l],
-            strain[2].0[l],
-            strain[3].0[l],
+            strain[0].lane(l),
+            strain[1].lane(l),
+            strain[2].lane(l),
+            strain[3].lane(l),
         ];
-        let r = material.update(&e, &mut states[first + l * stride]);
+        let r = update(&e, &mut states[first + l * stride]);
         for c in 0..4 {
-            out.stress[c].0[l] = r.stress[c];
+            out.stress[c].set_lane(l, r.stress[c]);
         }
-        out.strain_energy_density.0[l] = r.strain_energy_density;
-        out.plastic_work_density.0[l] = r.plastic_work_density;
+        out.strain_energy_density
+            .set_lane(l, r.strain_energy_density);
+        out.plastic_work_density.set_lane(l, r.plastic_work_density);
     }
     out
 }
@@ -118,58 +108,42 @@ impl Elastic {
         self.lambda + 2.0 * self.mu
     }
 
+    /// `D e`: stress (Pa) of the strain `e` (components x lanes).
     #[inline(always)]
-    pub fn stress_of(&self, e: &Strain) -> Stress {
-        let lt = self.lambda * (e[0] + e[1] + e[2]);
+    pub fn stress_of<R: Real>(&self, e: &[R; 4]) -> [R; 4] {
+        let lt = (e[0] + e[1] + e[2]) * self.lambda;
         let m2 = 2.0 * self.mu;
         [
-            lt + m2 * e[0],
-            lt + m2 * e[1],
-            lt + m2 * e[2],
-            self.mu * e[3],
+            lt + e[0] * m2,
+            lt + e[1] * m2,
+            lt + e[2] * m2,
+            e[3] * self.mu,
         ]
     }
 }
 
-/// `s : e / 2` with engineering shear strain.
+/// `s : e / 2` with engineering shear strain (J/m^3 for Pa and -).
 #[inline(always)]
-pub fn half_contraction(s: &Stress, e: &Strain) -> f64 {
-    0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3])
+pub fn half_contraction<R: Real>(s: &[R; 4], e: &[R; 4]) -> R {
+    (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3]) * 0.5
 }
 
 impl ConstitutiveModel for Elastic {
     type State = ();
     #[inline(always)]
-    fn update(&self, strain: &Strain, _: &mut ()) -> PointResponse {
-        let stress = self.stress_of(strain);
-        PointResponse {
-            stress,
-            strain_energy_density: half_contraction(&stress, strain),
-            plastic_work_density: 0.0,
-        }
-    }
-    /// `stress_of` and `half_contraction` in lanes, in their order.
-    #[inline(always)]
-    fn update_lanes(
+    fn update<R: Real>(
         &self,
-        e: &[Lanes; 4],
+        strain: &[R; 4],
         _: &mut [()],
         _: usize,
         _: usize,
-        _: &Mask,
-    ) -> LaneResponse {
-        let lt = self.lambda * (e[0] + e[1] + e[2]);
-        let m2 = 2.0 * self.mu;
-        let s = [
-            lt + m2 * e[0],
-            lt + m2 * e[1],
-            lt + m2 * e[2],
-            self.mu * e[3],
-        ];
-        LaneResponse {
-            stress: s,
-            strain_energy_density: 0.5 * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3]),
-            plastic_work_density: Lanes::splat(0.0),
+        _: R::Mask,
+    ) -> Response<R> {
+        let stress = self.stress_of(strain);
+        Response {
+            stress,
+            strain_energy_density: half_contraction(&stress, strain),
+            plastic_work_density: R::splat(0.0),
         }
     }
     fn stress(&self, strain: &Strain, _: &()) -> Stress {
@@ -235,16 +209,70 @@ impl FlowCurve {
         }
     }
 
-    /// `(initial yield stress Pa, plastic modulus Pa)` of a linear-hardening curve, `None` for
-    /// a tabulated one.
+    /// The curve as [`LinearHardening`], `None` for a tabulated one.
     #[inline(always)]
-    pub fn linear(&self) -> Option<(f64, f64)> {
-        (self.points.len() == 1).then(|| (self.points[0].1, self.tail_slope))
+    pub fn linear(&self) -> Option<LinearHardening> {
+        (self.points.len() == 1).then(|| LinearHardening {
+            yield_stress: self.points[0].1,
+            modulus: self.tail_slope,
+        })
     }
 
     /// Flow stress at equivalent plastic strain `k`, Pa.
     pub fn flow_stress(&self, k: f64) -> f64 {
         self.piece(k).0
+    }
+}
+
+/// What the radial return needs of a flow curve, in the number type `R`.
+pub trait FlowLaw<R: Real> {
+    /// Flow stress at equivalent plastic strain `k`, Pa.
+    fn flow_stress(&self, k: R) -> R;
+    /// The increment `dk` solving `q - 3 mu dk - sigma_y(k + dk) = 0` (`q`: trial von Mises
+    /// stress, Pa; `three_mu`: 3 mu, Pa).
+    fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R;
+}
+
+/// Linear hardening, `sigma_y(k) = yield_stress + modulus k`: one piece, any number type.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearHardening {
+    /// Initial yield stress, Pa.
+    pub yield_stress: f64,
+    /// Plastic modulus H, Pa.
+    pub modulus: f64,
+}
+
+impl<R: Real> FlowLaw<R> for LinearHardening {
+    #[inline(always)]
+    fn flow_stress(&self, k: R) -> R {
+        k * self.modulus + self.yield_stress
+    }
+    /// [`FlowCurve`]'s piece by piece solve on its one piece, in its order.
+    #[inline(always)]
+    fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R {
+        let dk = R::splat(0.0);
+        let sy = self.flow_stress(k + dk);
+        let x = (q - dk * three_mu - sy) / (three_mu + self.modulus);
+        dk + x
+    }
+}
+
+impl FlowLaw<f64> for FlowCurve {
+    #[inline(always)]
+    fn flow_stress(&self, k: f64) -> f64 {
+        self.piece(k).0
+    }
+    /// Piece by piece of the curve.
+    fn plastic_increment(&self, q: f64, k: f64, three_mu: f64) -> f64 {
+        let mut dk = 0.0;
+        loop {
+            let (sy, h, next) = self.piece(k + dk);
+            let x = (q - three_mu * dk - sy) / (three_mu + h);
+            match next {
+                Some(b) if k + dk + x > b => dk = b - k,
+                _ => return dk + x,
+            }
+        }
     }
 }
 
@@ -275,17 +303,73 @@ impl VonMises {
         ]
     }
 
-    /// Solves `q - 3 mu dk - sigma_y(k + dk) = 0` piece by piece of the flow curve.
-    fn plastic_increment(&self, q: f64, k: f64) -> f64 {
-        let three_mu = 3.0 * self.elastic.mu;
-        let mut dk = 0.0;
-        loop {
-            let (sy, h, next) = self.flow.piece(k + dk);
-            let x = (q - three_mu * dk - sy) / (three_mu + h);
-            match next {
-                Some(b) if k + dk + x > b => dk = b - k,
-                _ => return dk + x,
+    /// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
+    /// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
+    /// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly. The
+    /// trial for every lane, the return where any lane yields, selected per lane; states as
+    /// in [`ConstitutiveModel::update`], written back only for active lanes that yield.
+    #[inline(always)]
+    fn radial_return<R: Real, H: FlowLaw<R>>(
+        &self,
+        flow: &H,
+        strain: &[R; 4],
+        states: &mut [PlasticState],
+        (first, stride, active): (usize, usize, R::Mask),
+    ) -> Response<R> {
+        let mu = self.elastic.mu;
+        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
+        let (mut p, mut k_old) = ([R::splat(0.0); 4], R::splat(0.0));
+        for l in (0..R::LANES).filter(|&l| R::on(active, l)) {
+            let s = &states[first + l * stride];
+            for c in 0..4 {
+                p[c].set_lane(l, s.plastic_strain[c]);
             }
+            k_old.set_lane(l, s.eqps);
+        }
+        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
+        let trace = e[0] + e[1] + e[2];
+        let third = trace / 3.0;
+        let mut dev = [
+            (e[0] - third) * (2.0 * mu),
+            (e[1] - third) * (2.0 * mu),
+            (e[2] - third) * (2.0 * mu),
+            (strain[3] - p[3] * 2.0) * mu,
+        ];
+        let mean = trace * bulk;
+        let volumetric_energy = mean * 0.5 * trace;
+        let q2 =
+            (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) * 1.5 + dev[3] * 3.0 * dev[3];
+        let sy_old = flow.flow_stress(k_old);
+        let mut plastic_work_density = R::splat(0.0);
+        let mut q2_final = q2;
+        // Compare squares: most points are elastic and need no square root.
+        let yields = q2.gt(sy_old * sy_old);
+        if R::any(yields) {
+            let q = q2.sqrt();
+            // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
+            let dk = flow.plastic_increment(q, k_old, 3.0 * mu).max(0.0);
+            // Plastic strain increment dk * 3/2 dev/q (tensor shear).
+            let r = dk * 1.5 / q;
+            let scale = R::splat(1.0) - r * (2.0 * mu); // q_new / q = 1 - 3 mu dk / q
+            for c in 0..4 {
+                p[c] = R::select(yields, p[c] + r * dev[c], p[c]);
+                dev[c] = R::select(yields, dev[c] * scale, dev[c]);
+            }
+            q2_final = R::select(yields, q2 * scale * scale, q2);
+            let eqps = k_old + dk;
+            let work = (sy_old + flow.flow_stress(eqps)) * 0.5 * dk;
+            plastic_work_density = R::select(yields, work, plastic_work_density);
+            for l in (0..R::LANES).filter(|&l| R::on(active, l) && R::on(yields, l)) {
+                states[first + l * stride] = PlasticState {
+                    plastic_strain: [p[0].lane(l), p[1].lane(l), p[2].lane(l), p[3].lane(l)],
+                    eqps: eqps.lane(l),
+                };
+            }
+        }
+        Response {
+            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
+            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
+            plastic_work_density,
         }
     }
 }
@@ -293,128 +377,22 @@ impl VonMises {
 impl ConstitutiveModel for VonMises {
     type State = PlasticState;
 
-    /// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
-    /// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
-    /// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly.
+    /// The radial return ([`VonMises::radial_return`]), in lanes for linear hardening; a
+    /// tabulated curve, whose pieces differ from lane to lane, runs it lane by lane.
     #[inline(always)]
-    fn update(&self, strain: &Strain, state: &mut PlasticState) -> PointResponse {
-        let mu = self.elastic.mu;
-        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
-        let p = &state.plastic_strain;
-        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
-        let trace = e[0] + e[1] + e[2];
-        let third = trace / 3.0;
-        let mut dev = [
-            2.0 * mu * (e[0] - third),
-            2.0 * mu * (e[1] - third),
-            2.0 * mu * (e[2] - third),
-            mu * (strain[3] - 2.0 * p[3]),
-        ];
-        let mean = bulk * trace;
-        let volumetric_energy = 0.5 * mean * trace;
-        let q2 =
-            1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
-        let k_old = state.eqps;
-        let sy_old = self.flow.flow_stress(k_old);
-        let mut plastic_work_density = 0.0;
-        let mut q2_final = q2;
-        // Compare squares: most points are elastic and need no square root.
-        if q2 > sy_old * sy_old {
-            let q = q2.sqrt();
-            // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
-            let dk = self.plastic_increment(q, k_old).max(0.0);
-            // Plastic strain increment dk * 3/2 dev/q (tensor shear).
-            let r = 1.5 * dk / q;
-            for (pk, d) in state.plastic_strain.iter_mut().zip(dev) {
-                *pk += r * d;
-            }
-            let scale = 1.0 - 2.0 * mu * r; // q_new / q = 1 - 3 mu dk / q
-            for d in &mut dev {
-                *d *= scale;
-            }
-            q2_final = q2 * scale * scale;
-            state.eqps = k_old + dk;
-            plastic_work_density = 0.5 * (sy_old + self.flow.flow_stress(state.eqps)) * dk;
-        }
-        PointResponse {
-            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
-            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
-            plastic_work_density,
-        }
-    }
-
-    /// The radial return of `update` in lanes (linear hardening; a tabulated curve runs
-    /// `update` lane by lane): the trial for every lane, the return where any lane yields,
-    /// selected per lane, and the state written back only for active lanes that yield. Every
-    /// expression is `update`'s (and `plastic_increment`'s first piece) in the same order.
-    #[inline(always)]
-    fn update_lanes(
+    fn update<R: Real>(
         &self,
-        strain: &[Lanes; 4],
+        strain: &[R; 4],
         states: &mut [PlasticState],
         first: usize,
         stride: usize,
-        active: &Mask,
-    ) -> LaneResponse {
-        let Some((yield_stress, h)) = self.flow.linear() else {
-            return update_each_lane(self, strain, states, first, stride, active);
-        };
-        let mu = self.elastic.mu;
-        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
-        let (mut p, mut k_old) = ([Lanes::splat(0.0); 4], Lanes::splat(0.0));
-        for l in (0..LANES).filter(|&l| active[l]) {
-            let s = &states[first + l * stride];
-            for c in 0..4 {
-                p[c].0[l] = s.plastic_strain[c];
-            }
-            k_old.0[l] = s.eqps;
-        }
-        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
-        let trace = e[0] + e[1] + e[2];
-        let third = trace / 3.0;
-        let mut dev = [
-            2.0 * mu * (e[0] - third),
-            2.0 * mu * (e[1] - third),
-            2.0 * mu * (e[2] - third),
-            mu * (strain[3] - 2.0 * p[3]),
-        ];
-        let mean = bulk * trace;
-        let volumetric_energy = 0.5 * mean * trace;
-        let q2 =
-            1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) + 3.0 * dev[3] * dev[3];
-        let sy_old = yield_stress + h * k_old;
-        let yields = q2.gt(sy_old * sy_old);
-        let mut q2_final = q2;
-        let mut plastic_work_density = Lanes::splat(0.0);
-        if yields.iter().any(|&y| y) {
-            let three_mu = 3.0 * mu;
-            let q = q2.sqrt();
-            // plastic_increment(q, k_old): its first (and only) piece, from dk = 0.
-            let dk0 = 0.0;
-            let sy = yield_stress + h * (k_old + dk0);
-            let x = (q - three_mu * dk0 - sy) / (three_mu + h);
-            let dk = (dk0 + x).max(0.0);
-            let r = 1.5 * dk / q;
-            let scale = 1.0 - 2.0 * mu * r;
-            let eqps = k_old + dk;
-            for c in 0..4 {
-                p[c] = Lanes::select(&yields, p[c] + r * dev[c], p[c]);
-                dev[c] = Lanes::select(&yields, dev[c] * scale, dev[c]);
-            }
-            q2_final = Lanes::select(&yields, q2 * scale * scale, q2);
-            let work = 0.5 * (sy_old + (yield_stress + h * eqps)) * dk;
-            plastic_work_density = Lanes::select(&yields, work, plastic_work_density);
-            for l in (0..LANES).filter(|&l| active[l] && yields[l]) {
-                states[first + l * stride] = PlasticState {
-                    plastic_strain: [p[0].0[l], p[1].0[l], p[2].0[l], p[3].0[l]],
-                    eqps: eqps.0[l],
-                };
-            }
-        }
-        LaneResponse {
-            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
-            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
-            plastic_work_density,
+        active: R::Mask,
+    ) -> Response<R> {
+        match self.flow.linear() {
+            Some(linear) => self.radial_return(&linear, strain, states, (first, stride, active)),
+            None => each_lane(strain, states, first, stride, active, |e, s| {
+                self.radial_return(&self.flow, e, std::slice::from_mut(s), (0, 1, true))
+            }),
         }
     }
 
@@ -459,6 +437,11 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
+    /// One point's update.
+    fn update(m: &VonMises, strain: &Strain, state: &mut PlasticState) -> PointResponse {
+        m.update(strain, std::slice::from_mut(state), 0, 1, true)
+    }
+
     fn steel(hardening: Hardening) -> VonMises {
         VonMises::new(&MaterialSpec {
             density: 7850.0,
@@ -494,7 +477,7 @@ mod tests {
         let e_max = 10.0 * e_y;
         for i in 1..=steps {
             let e = e_max * i as f64 / steps as f64;
-            let r = m.update(&[e, 0.0, 0.0, 0.0], &mut state);
+            let r = update(&m, &[e, 0.0, 0.0, 0.0], &mut state);
             let (q, k) = if e <= e_y {
                 (2.0 * mu * e, 0.0)
             } else {
@@ -522,7 +505,7 @@ mod tests {
         let mut state = PlasticState::default();
         // One big step far beyond the table: the return must end on the flat tail.
         let e = 0.1;
-        let r = m.update(&[e, 0.0, 0.0, 0.0], &mut state);
+        let r = update(&m, &[e, 0.0, 0.0, 0.0], &mut state);
         assert_relative_eq!(von_mises(&r.stress), 310e6, max_relative = 1e-12);
         // Consistency: 2 mu e = q + 3 mu k (uniaxial strain, deviatoric part).
         assert_relative_eq!(
@@ -533,7 +516,7 @@ mod tests {
         // Inside the first segment.
         let mut s2 = PlasticState::default();
         let e2 = 250e6 / (2.0 * mu) + 0.004;
-        let r2 = m.update(&[e2, 0.0, 0.0, 0.0], &mut s2);
+        let r2 = update(&m, &[e2, 0.0, 0.0, 0.0], &mut s2);
         let h = 5e9;
         let k = 2.0 * mu * 0.004 / (3.0 * mu + h);
         assert_relative_eq!(s2.eqps, k, max_relative = 1e-12);
@@ -546,9 +529,9 @@ mod tests {
             tangent_modulus: 1e9,
         });
         let mut state = PlasticState::default();
-        m.update(&[0.01, 0.0, 0.0, 0.0], &mut state);
+        update(&m, &[0.01, 0.0, 0.0, 0.0], &mut state);
         let k = state.eqps;
-        let r = m.update(&[0.0099, 0.0, 0.0, 0.0], &mut state);
+        let r = update(&m, &[0.0099, 0.0, 0.0, 0.0], &mut state);
         assert_eq!(state.eqps, k);
         assert_eq!(r.plastic_work_density, 0.0);
     }

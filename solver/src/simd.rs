@@ -1,8 +1,9 @@
 //! Lanes and the instruction set the batched kernels run on, chosen at run time.
 //!
-//! The batched kernels ([`crate::batch`]) are plain Rust over `[f64; LANES]` arrays: every
-//! lane does the scalar path's arithmetic in the scalar path's order, and LLVM turns the lane
-//! loops into vector instructions. [`dispatch`] runs a chunk's kernel inside a function
+//! The batched kernels ([`crate::batch`]) are the scalar path's kernels instantiated with
+//! [`Lanes`] ([`crate::real::Real`]), plain Rust over `[f64; LANES]` arrays: every lane does
+//! the scalar path's arithmetic in the scalar path's order, and LLVM turns the lane loops
+//! into vector instructions. [`dispatch`] runs a chunk's kernel inside a function
 //! compiled for AVX-512 or AVX2 (+FMA) when the processor has them (detected once with
 //! `is_x86_feature_detected!`), and as plain x86-64 (SSE2) or another architecture's baseline
 //! otherwise: the portable fallback is the same code.
@@ -43,40 +44,12 @@ impl Lanes {
         Lanes([x; LANES])
     }
 
+    /// `f` applied to every lane.
     #[inline(always)]
-    fn map(self, f: impl Fn(f64) -> f64) -> Lanes {
+    pub fn map(self, f: impl Fn(f64) -> f64) -> Lanes {
         let mut out = self;
         for x in &mut out.0 {
             *x = f(*x);
-        }
-        out
-    }
-
-    #[inline(always)]
-    pub fn sqrt(self) -> Lanes {
-        self.map(f64::sqrt)
-    }
-
-    /// `f64::max` with `x` per lane.
-    #[inline(always)]
-    pub fn max(self, x: f64) -> Lanes {
-        self.map(|v| v.max(x))
-    }
-
-    /// `self > other` per lane.
-    #[inline(always)]
-    pub fn gt(self, other: Lanes) -> Mask {
-        std::array::from_fn(|l| self.0[l] > other.0[l])
-    }
-
-    /// Per lane: `a` where `mask`, else `b`.
-    #[inline(always)]
-    pub fn select(mask: &Mask, a: Lanes, b: Lanes) -> Lanes {
-        let mut out = b;
-        for l in 0..LANES {
-            if mask[l] {
-                out.0[l] = a.0[l];
-            }
         }
         out
     }

@@ -5,7 +5,8 @@
 //! `u_{n+1} = u_n + dt v_{n+1/2}`), plus what the scene format has no words for: a body
 //! force, initial displacement and velocity fields, and every boundary node held.
 
-use impact_solver::element::{shape, Formulation, PointGeometry};
+use impact_solver::element::{shape, Formulation};
+use impact_solver::geometry::PointGeometry;
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::Elastic;
 use impact_solver::mesh::{Mesh, PlateMesh};
