@@ -9,7 +9,7 @@ use crate::pareto;
 use crate::table::{num, Table};
 
 /// What the benchmark measures, for the page.
-const ABOUT: &str = "Each configuration (element, mesh, CFL fraction) of each problem is run and timed (setup + time loop, the minimum of the repeats) and its error measured against a reference computed once, untimed (finer mesh, see the table of references): for the impact problems the largest relative error of impulse, final impactor velocity and maximum displacement; for the pulse the RMS error of the mid-span displacement history relative to its peak; for the plane-strain P wave (wave-p, 4 x ny elements through 20 mm) the relative error of the measured wave speed against the closed form c_P, an analytical reference. Lower left is better.";
+const ABOUT: &str = "Each configuration (element, mesh, CFL fraction) of each problem is run and timed (setup + time loop, the minimum of its runs: `runs` in the table, their spread `loop_spread` = slowest / fastest loop - 1) and its error measured against a reference computed once, untimed (finer mesh, see the table of references): for the impact problems the largest relative error of impulse, final impactor velocity and maximum displacement; for the pulse the RMS error of the mid-span displacement history relative to its peak; for the plane-strain P wave (wave-p, 4 x ny elements through 20 mm) the relative error of the measured wave speed against the closed form c_P, an analytical reference. Lower left is better.";
 
 /// The section, from the folder `dir` and its tables (None: the file is missing).
 pub fn section(dir: &Path, wp: Option<&Table>, refs: Option<&Table>) -> String {
