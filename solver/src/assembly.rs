@@ -7,6 +7,7 @@
 //! never the arithmetic.
 
 use crate::element::{scatter_add, ElementEnergy, ElementVector};
+use crate::heap::vec_bytes;
 use crate::workers::{part_range, threads_here, Team};
 
 /// Elements per task.
@@ -107,6 +108,18 @@ impl Assembly {
             1
         };
         Assembly::new(connectivity, n_nodes, threads)
+    }
+
+    /// Heap bytes of the buffers and of the parallel assembly's node lists.
+    pub fn heap_bytes(&self) -> usize {
+        let parallel = self.parallel.as_ref().map_or(0, |p| {
+            let own: usize = p.own_nodes.iter().map(vec_bytes).sum();
+            vec_bytes(&p.incidence.start)
+                + vec_bytes(&p.incidence.entries)
+                + own
+                + vec_bytes(&p.shared_nodes)
+        });
+        vec_bytes(&self.element_forces) + vec_bytes(&self.chunk_energy) + parallel
     }
 
     /// Threads the assembly runs on.

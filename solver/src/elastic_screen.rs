@@ -12,6 +12,7 @@
 //! every point and leave the state unchanged, and `K_e u_e` is its force up to round-off.
 
 use crate::element::{ElementEnergy, ElementVector, Formulation};
+use crate::heap::vec_bytes;
 use crate::material::ConstitutiveModel;
 use crate::mesh::Mesh;
 use crate::stiffness::LinearKernel;
@@ -49,6 +50,11 @@ impl ElasticScreen {
             kernel: LinearKernel::new(formulation, elastic, mesh),
             limit,
         })
+    }
+
+    /// Heap bytes of the matrices and the limits.
+    pub fn heap_bytes(&self) -> usize {
+        self.kernel.heap_bytes() + vec_bytes(&self.limit)
     }
 
     /// Forces and energies of element `e` at its displacements `ue` (m) by `K_e u_e` when

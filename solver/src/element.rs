@@ -12,6 +12,7 @@
 
 use crate::error::{Error, Result};
 use crate::geometry::{PointGeometry, SharedBatches, Vector, NODE_XI};
+use crate::heap::vec_bytes;
 use crate::material::{ConstitutiveModel, Elastic};
 use crate::mesh::Mesh;
 use crate::real::Real;
@@ -100,6 +101,8 @@ pub trait Formulation: Sync {
     }
     /// Element volume (area * W), m^3.
     fn volume(&self, e: usize) -> f64;
+    /// Heap bytes of the connectivity and the geometry.
+    fn heap_bytes(&self) -> usize;
 }
 
 /// Internal nodal forces and energies of `at` ([`Formulation`]), updating the material
@@ -173,8 +176,17 @@ pub fn element_max_eigenvalue<F: Formulation>(
     a.symmetric_eigenvalues().max()
 }
 
-fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
+/// Element `e`'s node coordinates relative to its node 0, m: its shape, wherever it lies.
+/// The geometry is computed from these, so congruent elements (the same relative
+/// coordinates, bit for bit) have the same geometry and share it ([`SharedBatches`]), and
+/// the Jacobian sums no large absolute coordinates that cancel.
+fn shape_coords(mesh: &Mesh, e: usize) -> [[f64; 2]; 4] {
     let c = mesh.element_coords(e);
+    c.map(|p| [p[0] - c[0][0], p[1] - c[0][1]])
+}
+
+fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
+    let c = shape_coords(mesh, e);
     let g = GAUSS_XI.map(|xi| PointGeometry::at(&c, xi));
     if let Some(bad) = g.iter().find(|p| !(p.det_j > 0.0)) {
         return Err(Error::Run {
@@ -192,7 +204,7 @@ fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
 /// Centroid derivatives with the element's exact area (sum of the 2x2 det J), m^2.
 fn centroid_geometry(mesh: &Mesh, e: usize) -> Result<(PointGeometry<f64>, f64)> {
     let area = gauss_geometry(mesh, e)?.iter().map(|g| g.det_j).sum();
-    Ok((PointGeometry::at(&mesh.element_coords(e), [0.0, 0.0]), area))
+    Ok((PointGeometry::at(&shape_coords(mesh, e), [0.0, 0.0]), area))
 }
 
 /// 2x2 Gauss quadrature of the plain displacement-based element.
@@ -228,11 +240,6 @@ impl FullQ4 {
     #[inline(always)]
     fn points<R: Real>(&self, at: usize) -> &[PointGeometry<Lanes>; 4] {
         self.points.batch::<R>(at)
-    }
-
-    /// Heap bytes of the geometry and connectivity.
-    pub fn heap_bytes(&self) -> usize {
-        self.points.heap_bytes() + self.nodes.capacity() * std::mem::size_of::<[u32; 4]>()
     }
 }
 
@@ -273,6 +280,9 @@ impl Formulation for FullQ4 {
     fn volume(&self, e: usize) -> f64 {
         self.weights::<f64>(e).iter().sum()
     }
+    fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.nodes) + self.points.heap_bytes()
+    }
 }
 
 /// Selective-reduced integration (B-bar): 2x2 deviatoric, centroid volumetric.
@@ -290,11 +300,6 @@ impl SelectiveQ4 {
             full: FullQ4::new(mesh, width)?,
             centroid: SharedBatches::new(&centroid, PointGeometry::bits, PointGeometry::lanes),
         })
-    }
-
-    /// Heap bytes of the geometry and connectivity.
-    pub fn heap_bytes(&self) -> usize {
-        self.full.heap_bytes() + self.centroid.heap_bytes()
     }
 }
 
@@ -346,6 +351,9 @@ impl Formulation for SelectiveQ4 {
     }
     fn volume(&self, e: usize) -> f64 {
         self.full.volume(e)
+    }
+    fn heap_bytes(&self) -> usize {
+        self.full.heap_bytes() + self.centroid.heap_bytes()
     }
 }
 
@@ -405,7 +413,7 @@ impl OnePointQ4 {
         let per_element: Vec<OnePoint<f64>> = (0..mesh.elements.len())
             .map(|e| {
                 let (c, area) = centroid_geometry(mesh, e)?;
-                let xy = mesh.element_coords(e);
+                let xy = shape_coords(mesh, e);
                 let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
                 let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
                 let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
@@ -436,11 +444,6 @@ impl OnePointQ4 {
             qy += g * u[2 * a + 1];
         }
         (qx, qy)
-    }
-
-    /// Heap bytes of the element data and connectivity.
-    pub fn heap_bytes(&self) -> usize {
-        self.data.heap_bytes() + self.nodes.capacity() * std::mem::size_of::<[u32; 4]>()
     }
 }
 
@@ -496,6 +499,9 @@ impl Formulation for OnePointQ4 {
     }
     fn volume(&self, e: usize) -> f64 {
         self.weights::<f64>(e)[0]
+    }
+    fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.nodes) + self.data.heap_bytes()
     }
 }
 

@@ -6,6 +6,7 @@
 
 use std::collections::HashMap;
 
+use crate::heap::vec_bytes;
 use crate::real::Real;
 use crate::simd::{Lanes, LANES};
 
@@ -179,8 +180,8 @@ impl<B> SharedBatches<B> {
         self.distinct.len()
     }
 
-    /// Heap bytes held (capacities).
+    /// Heap bytes held.
     pub fn heap_bytes(&self) -> usize {
-        self.distinct.capacity() * std::mem::size_of::<B>() + self.index.capacity() * 4
+        vec_bytes(&self.distinct) + vec_bytes(&self.index)
     }
 }

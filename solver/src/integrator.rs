@@ -11,6 +11,7 @@ use crate::elastic_screen::ElasticScreen;
 use crate::element::{element_response, gather, lumped_masses, ElementEnergy, Formulation};
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
+use crate::heap;
 use crate::history::{
     locate_probes, steps_to, HistorySink, Probe, Recorder, RunTotals, Sample, Schedule, StopReason,
 };
@@ -94,6 +95,18 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             assembly,
             kernel_path: KernelPath::fastest(),
         }
+    }
+
+    /// Heap bytes the model holds: geometry, states, masses, stiffness matrices, screen and
+    /// assembly buffers (not the time loop's nodal vectors).
+    pub fn heap_bytes(&self) -> usize {
+        self.formulation.heap_bytes()
+            + heap::vec_bytes(&self.states)
+            + heap::vec_bytes(&self.mass)
+            + heap::vec_bytes(&self.inverse_mass)
+            + self.linear.as_ref().map_or(0, LinearKernel::heap_bytes)
+            + self.screen.as_ref().map_or(0, ElasticScreen::heap_bytes)
+            + self.assembly.heap_bytes()
     }
 
     /// Runs the element kernels on `path` (the scalar reference or a batched instruction set).

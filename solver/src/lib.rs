@@ -18,6 +18,7 @@ pub mod element;
 pub mod energy;
 pub mod error;
 pub mod geometry;
+pub mod heap;
 pub mod history;
 pub mod impactor;
 pub mod integrator;

@@ -6,6 +6,7 @@
 use std::collections::HashMap;
 
 use crate::element::{element_stiffness, gather, ElementEnergy, ElementVector, Formulation};
+use crate::heap::vec_bytes;
 use crate::material::Elastic;
 use crate::mesh::Mesh;
 
@@ -36,6 +37,11 @@ impl LinearKernel {
             })
             .collect();
         LinearKernel { columns, matrix_of }
+    }
+
+    /// Heap bytes of the matrices and the per-element index.
+    pub fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.columns) + vec_bytes(&self.matrix_of)
     }
 
     /// Number of distinct element matrices.

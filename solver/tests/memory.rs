@@ -1,0 +1,63 @@
+//! Memory per element of the paper's elasto-plastic scene (Table 1, 80 x 16, model as
+//! `simulate` builds it: von Mises, batched kernels, elastic screen where it pays) for every
+//! element: the heap bytes the model holds (`PlateModel::heap_bytes`: the capacities of its
+//! arrays) per element.
+//!
+//! Bound: 400 bytes. Issue 12's target is 300, not met yet: the plastic states alone are
+//! 160 bytes per q4 element (4 points x 5 f64), the element-force buffer of the (parallel)
+//! assembly 64, masses, node lists and screen ~60; the geometry, shared between congruent
+//! elements, is ~70 for q4-sri (measured 2026-11-23: q4-sri 373, q4-full 362, q4-1pt 192).
+//! Unshared geometry (one copy per element, as before the sharing: ~1 KB per q4-sri element)
+//! or a second copy of it fails the bound.
+
+use std::path::Path;
+
+use impact_solver::element::Formulation;
+use impact_solver::integrator::PlateModel;
+use impact_solver::material::ConstitutiveModel;
+use impact_solver::mesh::PlateMesh;
+use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::scene::ElementKind;
+use impact_solver::Scene;
+
+const PAPER_PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
+
+/// (total, geometry) heap bytes per element of the built model.
+struct BytesPerElement;
+impl UseModel for BytesPerElement {
+    type Output = (f64, f64);
+    fn use_model<F: Formulation, M: ConstitutiveModel>(
+        self,
+        model: PlateModel<F, M>,
+    ) -> (f64, f64) {
+        let n = model.formulation.n_elements() as f64;
+        (
+            model.heap_bytes() as f64 / n,
+            model.formulation.heap_bytes() as f64 / n,
+        )
+    }
+}
+
+#[test]
+fn the_paper_plastic_model_holds_at_most_400_bytes_per_element() {
+    for element in [
+        ElementKind::Q4Sri,
+        ElementKind::Q4Full,
+        ElementKind::Q4OnePoint,
+    ] {
+        let mut scene = Scene::from_yaml(PAPER_PLASTIC, Path::new("paper-plastic.yaml")).unwrap();
+        scene.mesh.element = element;
+        let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
+        let (total, geometry) =
+            model::build(&scene, &mesh, Kernel::Solver, BytesPerElement).unwrap();
+        println!(
+            "{}: {total:.1} bytes per element, geometry {geometry:.1}",
+            element.name()
+        );
+        assert!(
+            total <= 400.0,
+            "{}: {total:.1} bytes per element",
+            element.name()
+        );
+    }
+}
