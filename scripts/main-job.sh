@@ -1,16 +1,22 @@
 #!/usr/bin/env bash
-# The main job: the benchmarks, then the verification matrix and the V&V report with them.
+# The main job: the benchmarks, the verification matrix and the V&V report with them.
 #
 #   scripts/main-job.sh            # full sizes (work-precision at four mesh levels x three CFLs)
 #   scripts/main-job.sh --quick    # the benchmarks at their small CI sizes; verify is the same
 #
 # Writes out/verification/ (results.json, junit.xml, index.html, report.md, ...) and
 # out/verification/benchmarks/ (the impact-bench CSV, SVG and Markdown). Runs from any folder.
+# Order: first the untimed work side by side on the cores (the matrix, `impact verify`, beside
+# the stability benchmark and the work-precision references, `impact-bench references`), then
+# the timed benchmarks alone (throughput, work-precision: nothing else of this job runs while
+# they time), then the report (`impact report`). The benchmarks' results are those of
+# `impact-bench all`: work-precision reads the references this binary wrote (the same bits).
 # Exit status: verify's (0 when every failing check is a declared known failure and none
 # passes unexpectedly, 1 on an unexpected FAIL or an XPASS, 2 bad input), written after the
 # report; when verify passes but the benchmarks failed (a stability run that blew up
-# silently), the benchmarks' status, so a failure is never hidden. The report is written in
-# both cases, with whatever the benchmarks managed to write. A build error stops at once.
+# silently), the benchmarks' status, so a failure is never hidden; 2 when the report cannot be
+# written. The report is written in both cases, with whatever the benchmarks managed to
+# write. A build error stops at once.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -36,18 +42,32 @@ echo "== build: impact-bench and impact (release)"
 cargo build --release --workspace --bins
 target_dir="$(cargo metadata --format-version 1 --no-deps | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')"
 
-echo "== benchmarks: impact-bench all ${quick[*]:-} --out $bench"
+bench_bin="$target_dir/release/impact-bench"
 bench_status=0
-"$target_dir/release/impact-bench" all "${quick[@]}" --out "$bench" || bench_status=$?
+bench() { "$bench_bin" "$@" "${quick[@]}" --out "$bench" || { local s=$?; [[ $bench_status -ne 0 ]] || bench_status=$s; }; }
+
+echo "== untimed, side by side: the matrix (impact verify), the stability benchmark and the work-precision references"
+matrix_out="$(mktemp)"
+trap 'rm -f "$matrix_out"' EXIT
+# The matrix's table goes to a file and is printed when it is done (its progress lines, on
+# stderr, show as it goes).
+"$target_dir/release/impact" verify --out "$out" > "$matrix_out" &
+verify_pid=$!
+bench stability
+bench references
+verify_status=0
+wait "$verify_pid" || verify_status=$?
+cat "$matrix_out"
+
+echo "== timed, alone: impact-bench throughput and work-precision ${quick[*]:-} --out $bench"
+bench throughput
+bench work-precision
 if [[ $bench_status -ne 0 ]]; then
     echo "main-job: the benchmarks failed (status $bench_status); the report shows what they wrote" >&2
 fi
 
-echo "== verify: the matrix and the V&V report"
-verify_status=0
-"$target_dir/release/impact" verify --report --out "$out" --benchmarks "$bench" || verify_status=$?
-
 echo "== report: $out/index.html, $out/report.md"
+"$target_dir/release/impact" report --from "$out" --benchmarks "$bench" || exit 2
 if [[ $verify_status -ne 0 ]]; then
     exit "$verify_status"
 fi

@@ -9,6 +9,7 @@ mod page;
 mod page_tests;
 mod page_work_precision;
 mod pareto;
+mod references;
 mod stability;
 mod table;
 mod throughput;
@@ -41,6 +42,10 @@ enum Command {
     Stability,
     /// All three.
     All,
+    /// The work-precision references alone, untimed, kept in --out for a later
+    /// work-precision run there by this binary (the main job runs this beside the
+    /// verification matrix, then the timed benchmarks alone).
+    References,
 }
 
 fn main() -> anyhow::Result<()> {
@@ -66,12 +71,15 @@ const BENCHMARKS: [Benchmark; 3] = [
 /// Runs the benchmarks asked for and records each that finished in meta.json.
 fn run(cli: &Cli) -> anyhow::Result<()> {
     let (q, out) = (cli.quick, &cli.out);
+    if let Command::References = cli.command {
+        return work_precision::write_references(out, q);
+    }
     let wp_sizes = work_precision::Sizes::new(q).describe();
     let asked = match cli.command {
         Command::WorkPrecision => Some("work-precision"),
         Command::Throughput => Some("throughput"),
         Command::Stability => Some("stability"),
-        Command::All => None,
+        Command::All | Command::References => None,
     };
     for (name, bench) in BENCHMARKS {
         if asked.is_some_and(|a| a != name) {

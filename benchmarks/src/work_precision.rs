@@ -1,25 +1,27 @@
 //! Work-precision: the error against wall time, for every element, mesh level and CFL
 //! fraction, on the paper's case (reconstructed plate: elastic and elasto-plastic Table 1
 //! impacts, the 86.5 kN pulse) and the plane-strain P wave. The reference of each paper problem
-//! is computed once, untimed, before any timed run (the elastic ones two at a time), with
-//! `q4-sri` on a mesh twice as fine as the finest timed level at CFL 0.3; its own error is
-//! estimated from its difference to the finest timed `q4-sri` run at that CFL (that run's
-//! outcome, not a second run; Richardson, order 2) and reported beside it. Every configuration
-//! is timed by the minimum of its runs (no separate warm-up run), with the number of runs and
-//! their spread in the CSV. The wave's reference is analytical: the
+//! is `q4-sri` on a mesh twice as fine as the finest timed level at CFL 0.3, computed once,
+//! untimed, before any timed run (the elastic ones two at a time), or read from the output
+//! folder where this binary left it (`impact-bench references`: `references.rs`). Its own
+//! error is estimated from its difference to the finest timed `q4-sri` run at that CFL (that
+//! run's outcome, not a second run; Richardson, order 2) and reported beside it. Every
+//! configuration is timed by the minimum of its runs (no separate warm-up run), with the
+//! number of runs and their spread in the CSV. The wave's reference is analytical: the
 //! closed-form P-wave speed, against the speed measured by the momentum deficit of the layer
 //! above a mid-depth probe (the verification builtin `plane-wave`).
 
 use std::path::Path;
 
 use impact_solver::scene::{DtChoice, ElementKind};
-use impact_solver::{simulate, History, Outcome, Quiet, Scene};
+use impact_solver::{simulate, Outcome, Quiet, Scene};
 use plotters::prelude::*;
 
 use impact_analytical::plane_wave::PlaneWave;
 
 use crate::common::{markdown_table, paper, pulse, timed, write_csv, Timing};
 use crate::pareto;
+use crate::references::{load_or_compute, Measured, Schedule};
 
 const ELEMENTS: [ElementKind; 3] = [
     ElementKind::Q4Full,
@@ -119,35 +121,26 @@ fn interpolate(times: &[f64], values: &[f64], t: f64) -> f64 {
     values[i - 1] * (1.0 - w) + values[i] * w
 }
 
-fn history_error(run: &History, reference: &History) -> f64 {
-    let col = |h: &History, c: &str| h.column(c).expect("history column");
-    let (rt, rv) = (col(reference, "time_s"), col(reference, "mid_uy_m"));
-    let (t, v) = (col(run, "time_s"), col(run, "mid_uy_m"));
+fn history_error(run: &Measured, reference: &Measured) -> f64 {
+    let (rt, rv) = (&reference.time_s, &reference.mid_uy_m);
     let peak = rv.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let sq: f64 = t
+    let sq: f64 = run
+        .time_s
         .iter()
-        .zip(&v)
-        .map(|(t, v)| (v - interpolate(&rt, &rv, *t)).powi(2))
+        .zip(&run.mid_uy_m)
+        .map(|(t, v)| (v - interpolate(rt, rv, *t)).powi(2))
         .sum();
-    (sq / t.len() as f64).sqrt() / peak
+    (sq / run.time_s.len() as f64).sqrt() / peak
 }
 
-fn robust(o: &Outcome) -> [f64; 3] {
-    let s = &o.summary;
-    [
-        s.impulse,
-        s.final_impactor_velocity.unwrap_or(0.0),
-        s.max_plate_displacement,
-    ]
-}
-
-fn error(problem: &Problem, run: &Outcome, reference: &Outcome) -> f64 {
+fn error(problem: &Problem, run: &Outcome, reference: &Measured) -> f64 {
+    let run = Measured::of(run);
     if problem.history_metric {
-        history_error(&run.history, &reference.history)
+        history_error(&run, reference)
     } else {
-        robust(run)
+        run.robust
             .iter()
-            .zip(robust(reference))
+            .zip(reference.robust)
             .map(|(a, b)| ((a - b) / b).abs())
             .fold(0.0, f64::max)
     }
@@ -209,31 +202,39 @@ impl Sizes {
 /// is estimated from.
 const REFERENCE_CFL: f64 = 0.3;
 
-/// The reference of each problem: `q4-sri` on `level` at [`REFERENCE_CFL`], untimed. The
-/// elastic ones (their stiffness product runs on one thread) run side by side on the two
-/// cores; the others alone after them, where their element loop has the thread team
-/// (paired, each would run on one thread). Each run is the same bits wherever it runs.
-fn references(problems: &[Problem], level: (usize, usize)) -> anyhow::Result<Vec<Outcome>> {
-    let scene = |p: &Problem| with(&p.scene, ElementKind::Q4Sri, level, REFERENCE_CFL);
-    let one_thread = |p: &Problem| p.scene.material.plasticity.is_none();
-    let mut done: Vec<Option<Outcome>> = std::thread::scope(|s| {
-        let jobs: Vec<_> = problems
-            .iter()
-            .map(|p| one_thread(p).then(|| s.spawn(move || simulate(&scene(p), &mut Quiet))))
-            .collect();
-        jobs.into_iter()
-            .map(|j| {
-                j.map(|j| j.join().expect("a reference run panicked"))
-                    .transpose()
-            })
-            .collect::<Result<_, _>>()
-    })?;
-    for (p, o) in problems.iter().zip(&mut done) {
-        if o.is_none() {
-            *o = Some(simulate(&scene(p), &mut Quiet)?);
-        }
-    }
-    Ok(done.into_iter().flatten().collect())
+/// The reference of each problem: `q4-sri` twice as fine as the finest level of `sizes`, at
+/// [`REFERENCE_CFL`], untimed, from `out` when this binary wrote it there (see
+/// [`references`](crate::references)), and the mesh level it used.
+fn references(
+    out: &Path,
+    problems: &[Problem],
+    sizes: &Sizes,
+    schedule: Schedule,
+) -> anyhow::Result<(Vec<Measured>, (usize, usize))> {
+    let finest = *sizes.levels.last().expect("levels");
+    let level = (2 * finest.0, 2 * finest.1);
+    let scenes: Vec<(&str, Scene)> = problems
+        .iter()
+        .map(|p| {
+            let scene = with(&p.scene, ElementKind::Q4Sri, level, REFERENCE_CFL);
+            (p.name, scene)
+        })
+        .collect();
+    Ok((load_or_compute(out, &scenes, schedule)?, level))
+}
+
+/// `impact-bench references`: the references alone, untimed, written to `out` for a later
+/// work-precision run there (the main job runs this beside the verification matrix).
+pub fn write_references(out: &Path, quick: bool) -> anyhow::Result<()> {
+    let (done, level) = references(out, &problems(), &Sizes::new(quick), Schedule::Beside)?;
+    println!(
+        "work-precision references: {} on q4-sri {}x{} cfl {REFERENCE_CFL} in {}",
+        done.len(),
+        level.0,
+        level.1,
+        out.display()
+    );
+    Ok(())
 }
 
 /// The timed configurations of one problem (every element, CFL and level, each against
@@ -241,7 +242,7 @@ fn references(problems: &[Problem], level: (usize, usize)) -> anyhow::Result<Vec
 /// [`REFERENCE_CFL`] (None when the sizes do not time it).
 fn problem_runs(
     p: &Problem,
-    reference: &Outcome,
+    reference: &Measured,
     sizes: &Sizes,
     rows: &mut Vec<Vec<String>>,
 ) -> anyhow::Result<(Vec<Series>, Option<Outcome>)> {
@@ -270,9 +271,9 @@ fn problem_runs(
     Ok((series, finest_sri))
 }
 
-pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
-    let sizes = Sizes::new(quick);
-    let problems = [
+/// The paper problems of the benchmark.
+fn problems() -> [Problem; 3] {
+    [
         Problem {
             name: "impact-elastic",
             scene: paper(false),
@@ -288,10 +289,14 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
             scene: pulse(),
             history_metric: true,
         },
-    ];
+    ]
+}
+
+pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
+    let sizes = Sizes::new(quick);
+    let problems = problems();
     let finest = *sizes.levels.last().expect("levels");
-    let reference_level = (2 * finest.0, 2 * finest.1);
-    let references = references(&problems, reference_level)?;
+    let (references, reference_level) = references(out, &problems, &sizes, Schedule::Alone)?;
     let mut rows = Vec::new();
     let mut reference_rows = Vec::new();
     for (p, reference) in problems.iter().zip(&references) {
