@@ -447,6 +447,12 @@ impl OnePointQ4 {
     }
 }
 
+/// Hourglass energy `k (q_x^2 + q_y^2) / 2`, J (stiffness `k`, N/m; mode amplitudes, m).
+#[inline(always)]
+fn hourglass_energy_of<R: Real>(k: R, qx: R, qy: R) -> R {
+    k * 0.5 * (qx * qx + qy * qy)
+}
+
 impl Formulation for OnePointQ4 {
     const POINTS: usize = 1;
     const STIFFNESS_MATRIX_PAYS: bool = false;
@@ -489,13 +495,16 @@ impl Formulation for OnePointQ4 {
             f[2 * a] += k * qx * g;
             f[2 * a + 1] += k * qy * g;
         }
-        k * 0.5 * (qx * qx + qy * qy)
+        hourglass_energy_of(k, qx, qy)
     }
     #[inline(always)]
     fn hourglass_energy(&self, e: usize, u: &ElementVector) -> f64 {
         let (qx, qy) = self.hourglass_modes(e, u);
-        let k: f64 = Real::of_batch(&self.data.batch::<f64>(e).stiffness, e);
-        0.5 * k * (qx * qx + qy * qy)
+        hourglass_energy_of(
+            Real::of_batch(&self.data.batch::<f64>(e).stiffness, e),
+            qx,
+            qy,
+        )
     }
     fn volume(&self, e: usize) -> f64 {
         self.weights::<f64>(e)[0]

@@ -58,7 +58,8 @@ pub trait ConstitutiveModel: Sync {
     }
 }
 
-/// `update(strain lane l, state l)` for each active lane `l` (a model with no lane kernel).
+/// `update(strain of lane l, state of lane l)` for each active lane `l`, one element at a
+/// time (for a tabulated flow curve, whose pieces differ from lane to lane).
 #[inline(always)]
 fn each_lane<R: Real, S>(
     strain: &[R; 4],
@@ -321,8 +322,8 @@ impl VonMises {
         let (mut p, mut k_old) = ([R::splat(0.0); 4], R::splat(0.0));
         for l in (0..R::LANES).filter(|&l| R::on(active, l)) {
             let s = &states[first + l * stride];
-            for c in 0..4 {
-                p[c].set_lane(l, s.plastic_strain[c]);
+            for (pc, &x) in p.iter_mut().zip(&s.plastic_strain) {
+                pc.set_lane(l, x);
             }
             k_old.set_lane(l, s.eqps);
         }
@@ -351,9 +352,9 @@ impl VonMises {
             // Plastic strain increment dk * 3/2 dev/q (tensor shear).
             let r = dk * 1.5 / q;
             let scale = R::splat(1.0) - r * (2.0 * mu); // q_new / q = 1 - 3 mu dk / q
-            for c in 0..4 {
-                p[c] = R::select(yields, p[c] + r * dev[c], p[c]);
-                dev[c] = R::select(yields, dev[c] * scale, dev[c]);
+            for (pc, dc) in p.iter_mut().zip(&mut dev) {
+                *pc = R::select(yields, *pc + r * *dc, *pc);
+                *dc = R::select(yields, *dc * scale, *dc);
             }
             q2_final = R::select(yields, q2 * scale * scale, q2);
             let eqps = k_old + dk;

@@ -9,7 +9,7 @@
 //! `/` is splatted (`R::splat(1.0) - x`), and a product chain keeps its grouping
 //! (`1.5 * dk / q` is `(1.5 * dk) / q`, written `dk * 1.5 / q`, never `dk * (1.5 / q)`).
 
-use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, Mul, Sub};
 
 use crate::simd::{Lanes, Mask, LANES};
 
@@ -27,8 +27,6 @@ pub trait Real:
     + Mul<f64, Output = Self>
     + Div<f64, Output = Self>
     + AddAssign
-    + SubAssign
-    + MulAssign
 {
     /// One `bool` per lane.
     type Mask: Copy;
@@ -47,8 +45,6 @@ pub trait Real:
     fn any(mask: Self::Mask) -> bool;
     /// Lane `l` of `mask`.
     fn on(mask: Self::Mask, l: usize) -> bool;
-    /// The mask with every lane set.
-    fn all() -> Self::Mask;
     /// Lane `l`'s value.
     fn lane(self, l: usize) -> f64;
     /// Sets lane `l` to `x`.
@@ -96,10 +92,6 @@ impl Real for f64 {
         mask
     }
     #[inline(always)]
-    fn all() -> bool {
-        true
-    }
-    #[inline(always)]
     fn lane(self, _: usize) -> f64 {
         self
     }
@@ -139,9 +131,9 @@ impl Real for Lanes {
     #[inline(always)]
     fn select(mask: Mask, a: Lanes, b: Lanes) -> Lanes {
         let mut out = b;
-        for l in 0..LANES {
-            if mask[l] {
-                out.0[l] = a.0[l];
+        for ((o, &m), &x) in out.0.iter_mut().zip(&mask).zip(&a.0) {
+            if m {
+                *o = x;
             }
         }
         out
@@ -153,10 +145,6 @@ impl Real for Lanes {
     #[inline(always)]
     fn on(mask: Mask, l: usize) -> bool {
         mask[l]
-    }
-    #[inline(always)]
-    fn all() -> Mask {
-        [true; LANES]
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {
