@@ -101,7 +101,9 @@ def test_the_gil_is_released_during_a_run(small_scene):
     thread would stand still for the whole run; released, it keeps ticking (its longest pause
     is the interpreter's switch interval, 5 ms, plus scheduling), and both runs overlap."""
     scene = yaml.safe_load(small_scene.read_text())
-    scene["time"]["end"] = 5.0e-3  # a fixed end: 10000 steps, ~0.3 s, long enough to watch
+    # A fixed end long enough to watch: 40000 steps, ~0.2 s of a run (5 ms, 10000
+    # steps, took 44 ms once the kernels got faster: too short for the check below).
+    scene["time"]["end"] = 20.0e-3
     spans: list[tuple[float, float]] = []
 
     def run():
