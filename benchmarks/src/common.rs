@@ -94,6 +94,16 @@ pub fn timed_on(scene: &Scene, runs: usize, path: KernelPath) -> anyhow::Result<
     }
 }
 
+/// Writes `text` to `path` whole: staged beside it (a hidden name with this process's id),
+/// then moved in, so a reader never sees it half-written.
+pub fn write_whole(path: &Path, text: &str) -> anyhow::Result<()> {
+    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("file");
+    let staged = path.with_file_name(format!(".{name}.partial-{}", std::process::id()));
+    std::fs::write(&staged, text)?;
+    std::fs::rename(&staged, path)?;
+    Ok(())
+}
+
 /// Writes rows as CSV (a header, then values; strings as given, quoted only where a value
 /// holds a comma, a quote or a line break, e.g. a stability note).
 pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> anyhow::Result<()> {

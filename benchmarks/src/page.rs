@@ -66,9 +66,7 @@ impl Folder<'_> {
 pub fn write(dir: &Path) -> anyhow::Result<PathBuf> {
     let text = page(dir);
     let path = dir.join(PAGE);
-    let staged = dir.join(format!(".{PAGE}.partial-{}", std::process::id()));
-    std::fs::write(&staged, text)?;
-    std::fs::rename(&staged, &path)?;
+    crate::common::write_whole(&path, &text)?;
     Ok(path)
 }
 

@@ -121,13 +121,10 @@ fn read(path: &Path, key: &str) -> Option<Measured> {
     (on_file.key == key).then_some(on_file.reference)
 }
 
-/// Writes the file beside its final name first, then moves it in (never half-written).
+/// Writes the file whole (never half-written).
 fn write(path: &Path, key: &str, reference: &Measured) -> anyhow::Result<()> {
     let on_file = serde_json::json!({ "key": key, "reference": reference });
-    let staged = path.with_extension(format!("json.partial-{}", std::process::id()));
-    std::fs::write(&staged, serde_json::to_string(&on_file)?)?;
-    std::fs::rename(&staged, path)?;
-    Ok(())
+    crate::common::write_whole(path, &serde_json::to_string(&on_file)?)
 }
 
 /// A hash of this program's executable (None when it cannot be read: nothing is then read
