@@ -1,17 +1,27 @@
 //! Assembly of element forces into nodal forces (eq. 13), on one thread or several, with
 //! results bit-identical for any thread count: elements are processed in fixed chunks of
 //! [`CHUNK`], each chunk's energies summed in element order, the chunk sums added in chunk
-//! order, and every nodal force summed over its elements in element order (sequentially by
-//! scattering, or, with a [`Team`], by gathering per node over contiguous node ranges: the
-//! same additions in the same order). Threads only change who computes a chunk or a node,
-//! never the arithmetic.
+//! order, and every nodal force summed over its elements in element order from 0. Each chunk's
+//! forces are scattered as soon as the chunk is done (from a chunk-sized buffer, still in
+//! cache), so no per-element force array is kept. With a [`Team`], each part scatters
+//! directly into the nodes whose elements are all its own; a node shared by two parts is
+//! summed after the job from the kept forces of its elements, in element order: the same
+//! additions in the same order. Threads only change who computes a chunk or a node, never
+//! the arithmetic.
 
-use crate::element::{scatter_add, ElementEnergy, ElementVector};
+use std::ops::Range;
+
+use crate::element::{ElementEnergy, ElementVector};
+use crate::geometry::Vector;
 use crate::heap::vec_bytes;
+use crate::simd::{Lanes, LANES};
 use crate::workers::{part_range, threads_here, Team};
 
 /// Elements per task.
 pub const CHUNK: usize = 64;
+
+/// Batches of [`LANES`] elements per chunk.
+const BATCHES: usize = CHUNK / LANES;
 
 /// Meshes with fewer elements run on one thread (see [`Assembly::for_mesh`]). Measured
 /// (2026-11-23, this 2-core machine idle, paper plastic scene, batched kernels, wall time of
@@ -21,10 +31,19 @@ pub const CHUNK: usize = 64;
 /// the nodal loops'), so only the plastic stress path runs on several threads.
 pub const PARALLEL_MIN_ELEMENTS: usize = 256;
 
+/// The force vectors (N) of a batch of [`LANES`] consecutive elements, in lanes: how the
+/// kernels leave them (batch-major, so the batched kernels store whole registers).
+pub type BatchForces = Vector<Lanes>;
+
+/// One chunk's forces: the kernels' output, scattered before the next chunk.
+type ChunkForces = [BatchForces; BATCHES];
+
 /// Buffers of the chunked assembly (allocated once, reused every step), and the team of
 /// threads when it runs on several.
 pub struct Assembly {
-    element_forces: Vec<ElementVector>,
+    n_elements: usize,
+    /// Per part (thread), the chunk it is on.
+    scratch: Vec<ChunkForces>,
     chunk_energy: Vec<ElementEnergy>,
     parallel: Option<Parallel>,
 }
@@ -32,13 +51,14 @@ pub struct Assembly {
 /// What the assembly on several threads needs besides the buffers.
 struct Parallel {
     team: Team,
-    incidence: NodeIncidence,
-    /// Per part: the nodes all of whose elements are in the part's elements (it sums them
-    /// in the same job, one hand-off per assembly).
-    own_nodes: Vec<Vec<u32>>,
-    /// Nodes with elements in two or more parts (or in none: their sum is 0), summed by the
-    /// caller after the job. With `own_nodes` every node is written every step.
-    shared_nodes: Vec<u32>,
+    /// Per node: whether elements of two or more parts meet at it.
+    shared: Vec<bool>,
+    /// Per element: its slot in `kept` when it has a shared node, else `u32::MAX`.
+    slot: Vec<u32>,
+    /// The forces of the elements with a shared node (by slot), N.
+    kept: Vec<ElementVector>,
+    /// The shared nodes and, per shared node, its entries in `kept` in element order.
+    shared_nodes: NodeEntries,
 }
 
 impl Parallel {
@@ -58,32 +78,73 @@ impl Parallel {
                 }
             }
         }
-        let mut own_nodes = vec![Vec::new(); threads];
-        let mut shared_nodes = Vec::new();
-        for (n, part) in part_of.iter().enumerate() {
-            match part {
-                Some(Some(p)) => own_nodes[*p].push(n as u32),
-                Some(None) | None => shared_nodes.push(n as u32),
+        let shared: Vec<bool> = part_of.iter().map(|p| *p == Some(None)).collect();
+        let mut slot = vec![u32::MAX; connectivity.len()];
+        let mut n_kept = 0;
+        for (e, nodes) in connectivity.iter().enumerate() {
+            if nodes.iter().any(|&n| shared[n as usize]) {
+                slot[e] = n_kept;
+                n_kept += 1;
             }
         }
+        let shared_nodes = NodeEntries::new(connectivity, n_nodes, |n| shared[n], |e| slot[e]);
         Parallel {
             team: Team::new(threads),
-            incidence: NodeIncidence::new(connectivity, n_nodes),
-            own_nodes,
+            shared,
+            slot,
+            kept: vec![[0.0; 8]; n_kept as usize],
             shared_nodes,
         }
     }
 }
 
 /// The elements of part `part` of `parts`: whole chunks, contiguous.
-fn part_elements(
-    n_chunks: usize,
-    n_elements: usize,
-    parts: usize,
-    part: usize,
-) -> std::ops::Range<usize> {
+fn part_elements(n_chunks: usize, n_elements: usize, parts: usize, part: usize) -> Range<usize> {
     let chunks = part_range(n_chunks, parts, part);
     (chunks.start * CHUNK).min(n_elements)..(chunks.end * CHUNK).min(n_elements)
+}
+
+/// Where a chunk's forces go: every node straight into `f`, or, on several threads, only the
+/// nodes not `shared`, the forces of the elements with a `slot` copied into `kept`.
+struct Scatter<'a> {
+    f: &'a Disjoint<f64>,
+    shared: Option<(&'a [bool], &'a [u32], &'a Disjoint<ElementVector>)>,
+}
+
+impl Scatter<'_> {
+    /// Scatters the forces `forces` of the chunk's `elements` (`nodes(e)`: element `e`'s
+    /// nodes), in element order.
+    #[inline(always)]
+    fn chunk(
+        &self,
+        elements: Range<usize>,
+        forces: &ChunkForces,
+        nodes: impl Fn(usize) -> [u32; 4],
+    ) {
+        for (k, e) in elements.enumerate() {
+            let batch = &forces[k / LANES];
+            let fe: ElementVector = std::array::from_fn(|i| batch[i].0[k % LANES]);
+            let shared = match self.shared {
+                Some((shared, slot, kept)) if slot[e] != u32::MAX => {
+                    // SAFETY: an element's slot is written by the part that owns the element.
+                    unsafe { kept.slice(slot[e] as usize..slot[e] as usize + 1)[0] = fe };
+                    Some(shared)
+                }
+                _ => None,
+            };
+            for (a, &n) in nodes(e).iter().enumerate() {
+                let n = n as usize;
+                if shared.is_some_and(|s| s[n]) {
+                    continue;
+                }
+                // SAFETY: a node not shared has all its elements in this part (or there is
+                // one part), so only this part writes it.
+                let f = unsafe { self.f.slice(2 * n..2 * n + 2) };
+                f[0] += fe[2 * a];
+                f[1] += fe[2 * a + 1];
+            }
+        }
+    }
 }
 
 impl Assembly {
@@ -92,7 +153,8 @@ impl Assembly {
     pub fn new(connectivity: &[[u32; 4]], n_nodes: usize, threads: usize) -> Assembly {
         let n_elements = connectivity.len();
         Assembly {
-            element_forces: vec![[0.0; 8]; n_elements],
+            n_elements,
+            scratch: vec![[[Lanes::splat(0.0); 8]; BATCHES]; threads.max(1)],
             chunk_energy: vec![ElementEnergy::default(); n_elements.div_ceil(CHUNK)],
             parallel: (threads > 1).then(|| Parallel::new(connectivity, n_nodes, threads)),
         }
@@ -113,13 +175,12 @@ impl Assembly {
     /// Heap bytes of the buffers and of the parallel assembly's node lists.
     pub fn heap_bytes(&self) -> usize {
         let parallel = self.parallel.as_ref().map_or(0, |p| {
-            let own: usize = p.own_nodes.iter().map(vec_bytes).sum();
-            vec_bytes(&p.incidence.start)
-                + vec_bytes(&p.incidence.entries)
-                + own
-                + vec_bytes(&p.shared_nodes)
+            vec_bytes(&p.shared)
+                + vec_bytes(&p.slot)
+                + vec_bytes(&p.kept)
+                + p.shared_nodes.heap_bytes()
         });
-        vec_bytes(&self.element_forces) + vec_bytes(&self.chunk_energy) + parallel
+        vec_bytes(&self.scratch) + vec_bytes(&self.chunk_energy) + parallel
     }
 
     /// Threads the assembly runs on.
@@ -127,80 +188,66 @@ impl Assembly {
         self.parallel.as_ref().map_or(1, |p| p.team.size())
     }
 
-    /// Computes every element's forces with `chunk_kernel(first element, forces of the chunk,
-    /// states of the chunk)` (states: `points` per element; the kernel returns the chunk's
-    /// energies summed in element order), scatters them into `f` (overwritten) and returns
-    /// the summed energies.
+    /// Computes every element's forces with `chunk_kernel(elements of the chunk, their
+    /// batches of forces, their states)` (states: `points` per batch of [`LANES`] elements;
+    /// the kernel returns the chunk's energies summed in element order), scatters them into
+    /// `f` (overwritten) and returns the summed energies.
     pub fn assemble<S: Send>(
         &mut self,
         states: &mut [S],
         points: usize,
         nodes: impl Fn(usize) -> [u32; 4] + Sync,
-        chunk_kernel: impl Fn(usize, &mut [ElementVector], &mut [S]) -> ElementEnergy + Sync,
+        chunk_kernel: impl Fn(Range<usize>, &mut [BatchForces], &mut [S]) -> ElementEnergy + Sync,
         f: &mut [f64],
     ) -> ElementEnergy {
-        let chunk = |c: usize, forces: &mut [ElementVector], states: &mut [S]| {
-            chunk_kernel(c * CHUNK, forces, states)
+        let n_elements = self.n_elements;
+        let per_chunk = BATCHES * points.max(1);
+        // The chunk `c`'s elements, their batches in `forces` and their states.
+        let chunk = |c: usize, forces: &mut ChunkForces, states: &mut [S]| {
+            let elements = c * CHUNK..((c + 1) * CHUNK).min(n_elements);
+            let batches = elements.len().div_ceil(LANES);
+            (
+                chunk_kernel(elements.clone(), &mut forces[..batches], states),
+                elements,
+            )
         };
-        let per_chunk = CHUNK * points.max(1);
-        match &self.parallel {
+        f.fill(0.0);
+        let out = Disjoint::new(f);
+        let energies = Disjoint::new(&mut self.chunk_energy);
+        let states = Disjoint::new(states);
+        let scratch = Disjoint::new(&mut self.scratch);
+        let n_chunks = energies.len;
+        // Part `part` of `parts`: its chunks in order, each scattered at once.
+        let part_job = |part: usize, parts: usize, scatter: &Scatter| {
+            // SAFETY: a part's chunks (energies, states) and its scratch are its own.
+            let forces = unsafe { &mut scratch.slice(part..part + 1)[0] };
+            for c in part_range(n_chunks, parts, part) {
+                let s = (c * per_chunk).min(states.len)..((c + 1) * per_chunk).min(states.len);
+                let (energy, elements) = chunk(c, forces, unsafe { states.slice(s) });
+                unsafe { energies.slice(c..c + 1)[0] = energy };
+                scatter.chunk(elements, forces, &nodes);
+            }
+        };
+        match &mut self.parallel {
             Some(parallel) => {
-                let (team, incidence) = (&parallel.team, &parallel.incidence);
-                let n_elements = self.element_forces.len();
-                let forces = Disjoint::new(&mut self.element_forces);
-                let energies = Disjoint::new(&mut self.chunk_energy);
-                let states = Disjoint::new(states);
-                let out = Disjoint::new(f);
-                let n_chunks = energies.len;
-                team.run(&|part| {
-                    let elements = part_elements(n_chunks, n_elements, team.size(), part);
-                    let chunks = part_range(n_chunks, team.size(), part);
-                    // SAFETY: the part's chunks (their forces, energies and states) and its
-                    // own nodes' dofs belong to this part only.
-                    let (fe, en, st) = unsafe {
-                        (
-                            forces.slice(elements.clone()),
-                            energies.slice(chunks.clone()),
-                            states.slice(
-                                (chunks.start * per_chunk).min(states.len)
-                                    ..(chunks.end * per_chunk).min(states.len),
-                            ),
-                        )
-                    };
-                    for (k, c) in chunks.enumerate() {
-                        let e = (k * CHUNK)..((k + 1) * CHUNK).min(fe.len());
-                        let s = (k * per_chunk).min(st.len())..((k + 1) * per_chunk).min(st.len());
-                        en[k] = chunk(c, &mut fe[e], &mut st[s]);
-                    }
-                    for &n in &parallel.own_nodes[part] {
-                        let n = n as usize;
-                        let (fx, fy) = incidence.node(n, |e| &fe[e - elements.start]);
-                        // SAFETY: an own node belongs to this part only.
-                        unsafe { out.slice(2 * n..2 * n + 2) }.copy_from_slice(&[fx, fy]);
-                    }
-                });
-                for &n in &parallel.shared_nodes {
-                    let n = n as usize;
-                    let (fx, fy) = incidence.node(n, |e| &self.element_forces[e]);
-                    f[2 * n] = fx;
-                    f[2 * n + 1] = fy;
-                }
+                let kept = Disjoint::new(&mut parallel.kept);
+                let scatter = Scatter {
+                    f: &out,
+                    shared: Some((&parallel.shared, &parallel.slot, &kept)),
+                };
+                let team = &parallel.team;
+                team.run(&|part| part_job(part, team.size(), &scatter));
+                let kept = &parallel.kept;
+                parallel.shared_nodes.sum_into(f, |slot, i| kept[slot][i]);
             }
-            None => {
-                for (c, ((forces, energy), states)) in self
-                    .element_forces
-                    .chunks_mut(CHUNK)
-                    .zip(self.chunk_energy.iter_mut())
-                    .zip(states.chunks_mut(per_chunk))
-                    .enumerate()
-                {
-                    *energy = chunk(c, forces, states);
-                }
-                f.fill(0.0);
-                for (e, fe) in self.element_forces.iter().enumerate() {
-                    scatter_add(nodes(e), fe, f);
-                }
-            }
+            None => part_job(
+                0,
+                1,
+                &Scatter {
+                    f: &out,
+                    shared: None,
+                },
+            ),
         }
         let mut total = ElementEnergy::default();
         for &en in &self.chunk_energy {
@@ -210,69 +257,87 @@ impl Assembly {
     }
 }
 
-/// The scalar chunk kernel: `kernel(e, states of e)` element by element, energies summed in
-/// element order (`first`: the chunk's first element).
+/// The scalar chunk kernel: `kernel(e, states of e's batch)` element by element over
+/// `elements` (starting at a multiple of [`LANES`]; `points` states per batch), each force
+/// into its lane of `forces`, energies summed in element order.
 #[inline(always)]
 pub fn each_element<S>(
-    first: usize,
-    forces: &mut [ElementVector],
+    elements: Range<usize>,
+    forces: &mut [BatchForces],
     states: &mut [S],
     points: usize,
     kernel: impl Fn(usize, &mut [S]) -> (ElementVector, ElementEnergy),
 ) -> ElementEnergy {
     let mut energy = ElementEnergy::default();
-    for (k, fe) in forces.iter_mut().enumerate() {
-        let (force, en) = kernel(first + k, &mut states[k * points..(k + 1) * points]);
-        *fe = force;
+    for (k, e) in elements.enumerate() {
+        let batch = k / LANES;
+        let (force, en) = kernel(e, &mut states[batch * points..(batch + 1) * points]);
+        for (lanes, x) in forces[batch].iter_mut().zip(force) {
+            lanes.0[k % LANES] = x;
+        }
         energy += en;
     }
     energy
 }
 
-/// Per node, the element force entries that act on it, in element order (compressed rows):
-/// the gather form of the scatter `f[node] += fe[local node]` over the elements in order.
-struct NodeIncidence {
-    /// Node `n`'s entries are `entries[start[n]..start[n + 1]]`.
+/// Some nodes and, per node, the entries of the element forces that act on it, in element
+/// order (compressed rows): the gather form of the scatter `f[node] += fe[local node]` over
+/// the elements in order.
+struct NodeEntries {
+    nodes: Vec<u32>,
+    /// Node `nodes[k]`'s entries are `entries[start[k]..start[k + 1]]`.
     start: Vec<u32>,
-    /// `4 e + a`: element `e`'s local node `a`.
+    /// `4 slot + a`: local node `a` of the element kept at `slot`.
     entries: Vec<u32>,
 }
 
-impl NodeIncidence {
-    fn new(connectivity: &[[u32; 4]], n_nodes: usize) -> NodeIncidence {
-        let mut count = vec![0u32; n_nodes + 1];
-        for nodes in connectivity {
-            for &n in nodes {
-                count[n as usize + 1] += 1;
+impl NodeEntries {
+    /// The nodes `n` with `wanted(n)`, each element `e` at `slot(e)`.
+    fn new(
+        connectivity: &[[u32; 4]],
+        n_nodes: usize,
+        wanted: impl Fn(usize) -> bool,
+        slot: impl Fn(usize) -> u32,
+    ) -> NodeEntries {
+        let mut per_node: Vec<Vec<u32>> = vec![Vec::new(); n_nodes];
+        for (e, element) in connectivity.iter().enumerate() {
+            for (a, &n) in element.iter().enumerate() {
+                if wanted(n as usize) {
+                    per_node[n as usize].push(4 * slot(e) + a as u32);
+                }
             }
         }
-        for n in 0..n_nodes {
-            count[n + 1] += count[n];
+        let mut out = NodeEntries {
+            nodes: Vec::new(),
+            start: vec![0],
+            entries: Vec::new(),
+        };
+        for (n, entries) in per_node.iter().enumerate().filter(|(n, _)| wanted(*n)) {
+            out.nodes.push(n as u32);
+            out.entries.extend(entries);
+            out.start.push(out.entries.len() as u32);
         }
-        let start = count.clone();
-        let mut next = count;
-        let mut entries = vec![0u32; 4 * connectivity.len()];
-        for (e, nodes) in connectivity.iter().enumerate() {
-            for (a, &n) in nodes.iter().enumerate() {
-                entries[next[n as usize] as usize] = (4 * e + a) as u32;
-                next[n as usize] += 1;
-            }
-        }
-        NodeIncidence { start, entries }
+        out
     }
 
-    /// The force `(x, y)` on node `n`: the sum of its element entries in element order,
-    /// starting from 0 as the scatter does (`forces_of(e)`: element `e`'s force vector).
-    #[inline(always)]
-    fn node<'f>(&self, n: usize, forces_of: impl Fn(usize) -> &'f ElementVector) -> (f64, f64) {
-        let (mut fx, mut fy) = (0.0, 0.0);
-        for &ea in &self.entries[self.start[n] as usize..self.start[n + 1] as usize] {
-            let (e, a) = (ea as usize / 4, ea as usize % 4);
-            let fe = forces_of(e);
-            fx += fe[2 * a];
-            fy += fe[2 * a + 1];
+    fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.nodes) + vec_bytes(&self.start) + vec_bytes(&self.entries)
+    }
+
+    /// Sets each node's force `(x, y)` in `f` to the sum of its entries in element order,
+    /// starting from 0 as the scatter does (`entry(slot, i)`: force entry `i` of the element
+    /// at `slot`).
+    fn sum_into(&self, f: &mut [f64], entry: impl Fn(usize, usize) -> f64) {
+        for (k, &n) in self.nodes.iter().enumerate() {
+            let (mut fx, mut fy) = (0.0, 0.0);
+            for &sa in &self.entries[self.start[k] as usize..self.start[k + 1] as usize] {
+                let (slot, a) = (sa as usize / 4, sa as usize % 4);
+                fx += entry(slot, 2 * a);
+                fy += entry(slot, 2 * a + 1);
+            }
+            f[2 * n as usize] = fx;
+            f[2 * n as usize + 1] = fy;
         }
-        (fx, fy)
     }
 }
 
@@ -312,6 +377,7 @@ mod tests {
     //! order on one thread): bit-identical nodal forces, energies and states for 1 to 4
     //! threads, on a mesh whose element count is not a multiple of the chunk.
     use super::*;
+    use crate::element::scatter_add;
 
     /// A 13 x 11 structured mesh (143 elements, 168 nodes), counter-clockwise nodes, and one
     /// more node on no element (its force must come out 0 on every path).
@@ -344,7 +410,7 @@ mod tests {
         let (conn, n_nodes) = grid();
         let mut assembly = Assembly::new(&conn, n_nodes, threads);
         assert_eq!(assembly.threads(), threads);
-        let mut states = vec![0u64; 4 * conn.len()];
+        let mut states = vec![0u64; 4 * conn.len().div_ceil(LANES)];
         let mut f = vec![f64::NAN; 2 * n_nodes];
         let mut energy = ElementEnergy::default();
         for _ in 0..3 {
@@ -352,7 +418,7 @@ mod tests {
                 &mut states,
                 4,
                 |e| conn[e],
-                |first, forces, states| each_element(first, forces, states, 4, kernel),
+                |elements, forces, states| each_element(elements, forces, states, 4, kernel),
                 &mut f,
             );
         }
@@ -381,11 +447,9 @@ mod tests {
         for e in 0..4 {
             forces[e][2 * local_of_4[e]] = parts[e];
         }
-        let incidence = NodeIncidence::new(&conn, 9);
+        let entries = NodeEntries::new(&conn, 9, |_| true, |e| e as u32);
         let mut f = [f64::NAN; 18];
-        for n in 0..9 {
-            (f[2 * n], f[2 * n + 1]) = incidence.node(n, |e| &forces[e]);
-        }
+        entries.sum_into(&mut f, |slot, i| forces[slot][i]);
         assert_eq!(f[8], 0.0);
         assert_ne!(((parts[3] + parts[1]) + parts[2]) + parts[0], 0.0);
         let mut scattered = [0.0; 18];

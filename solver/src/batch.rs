@@ -7,35 +7,84 @@
 //! partial, its missing lanes padded with zero geometry and never written back. Per element
 //! the energies are summed in element order exactly as the scalar chunk does.
 //!
+//! Everything stays in lanes from the gather of the displacements to the forces: the
+//! displacements are loaded by index (one gather per vector), the material states are stored
+//! batch-major (one [`ConstitutiveModel::Batch`] per point of a batch), and the forces are
+//! written as whole batches ([`BatchForces`]) that the assembly scatters.
+//!
 //! - The stress path: [`crate::element::response`] in lanes (strains, material update with
 //!   the masked radial return, forces and hourglass), the scalar path's kernels instantiated
 //!   with [`Lanes`], on each formulation's batch of geometry.
-//! - The elastic screen of a plastic scene: lanes the screen proves elastic take `K_e u_e`;
-//!   the others go through the stress path (inactive screened lanes keep their states).
-//! - The stiffness product `K_e u_e` ([`linear_chunk`]) stays one element at a time: its 8
-//!   rows are the vector (one AVX-512 register, two AVX2 ones), because lanes of different
-//!   elements would need a gather per matrix entry where elements do not share `K_e`.
+//! - The elastic screen of a plastic scene: `K_e u_e` in lanes for the whole batch; lanes the
+//!   screen proves elastic (virgin at every point and below its bound) take it, the others the
+//!   stress path (the screened lanes' states are not written), chosen per lane.
+//! - The stiffness product `K_e u_e` ([`LinearChunk`]) in lanes, over the batch's matrices
+//!   stored in lanes ([`LinearKernel`]).
 //!
-//! Limits (measured and estimated on this project's 2-core AVX-512 Xeon, 2.7 GHz): a q4-sri
-//! element-step with radial return at four points is ~700 flops, 24 of them divisions and 4
-//! square roots that bit-identity forbids replacing (`x / 3.0` is not `x * (1/3)`); at the
-//! AVX-512 divider's ~16 cycles per 8 divisions that alone is ~18 ns, so <= 30 ns is near
-//! the floor. What remains above it (callgrind, AVX2 path: ~970 instructions per q4-sri
-//! plastic element-step, over half of them moves) is the transposition between the
-//! per-element storage (displacements, forces, plastic states as arrays of structs) and the
-//! lanes: a batch-major state layout is the next step.
+//! Limits (this project's 2-core AVX-512 Xeon, 2.7 GHz): a q4-sri element-step with radial
+//! return at four points is ~700 flops; with divisions by constants written as products
+//! (see [`crate::real`]) 4 divisions and 4 square roots remain, ~7 ns of the divider. What
+//! costs more than the arithmetic is measured in `impact-bench throughput` and profiled in
+//! the speed notes: spills of the lane arrays to the stack and the per-lane energy sums,
+//! which bit-identity keeps in element order.
 
-use crate::assembly::CHUNK;
+use std::ops::Range;
+
+use crate::assembly::{BatchForces, CHUNK};
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{gather, response, ElementEnergy, ElementVector, Formulation};
+use crate::element::{response, ElementEnergy, Energy, Formulation};
+use crate::geometry::Vector;
 use crate::material::ConstitutiveModel;
-use crate::simd::{Kernel, Lanes, LANES};
+use crate::real::Real;
+use crate::simd::{Kernel, Lanes, Mask, LANES};
 use crate::stiffness::LinearKernel;
 
 const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
 
+/// The displacement vectors (m) of the elements `e0 ..` (`lanes` of them, at most [`LANES`];
+/// the missing lanes hold node 0's) in lanes. Each vector is loaded whole by index (one
+/// gather instruction where the processor has one): lanes written one by one into memory
+/// and then read as a vector stall the load until the stores retire.
+#[inline(always)]
+fn gather_lanes<F: Formulation>(
+    formulation: &F,
+    e0: usize,
+    lanes: usize,
+    u: &[f64],
+) -> Vector<Lanes> {
+    let mut dof = [[0usize; LANES]; 4];
+    for l in 0..lanes {
+        for (a, &n) in formulation.nodes(e0 + l).iter().enumerate() {
+            dof[a][l] = 2 * n as usize;
+        }
+    }
+    // Every index is checked once here, so the loads below need no check of their own and
+    // vectorise.
+    let highest = dof.iter().flatten().copied().max().unwrap_or(0);
+    assert!(highest + 1 < u.len(), "node beyond the displacement vector");
+    let mut ue = [Lanes::splat(0.0); 8];
+    for (a, dof) in dof.iter().enumerate() {
+        for l in 0..LANES {
+            // SAFETY: dof[l] + 1 <= highest + 1 < u.len() (asserted above).
+            unsafe {
+                ue[2 * a].0[l] = *u.get_unchecked(dof[l]);
+                ue[2 * a + 1].0[l] = *u.get_unchecked(dof[l] + 1);
+            }
+        }
+    }
+    ue
+}
+
+/// Adds the energies of the first `lanes` lanes to `total`, in lane (element) order.
+#[inline(always)]
+fn add_lanes(total: &mut ElementEnergy, energy: &Energy<Lanes>, lanes: usize) {
+    for l in 0..lanes {
+        *total += energy.lane(l);
+    }
+}
+
 /// The stress-path chunk kernel in batches (the elastic `screen` first where there is one):
-/// forces of the chunk's elements from `first` into `forces`, their states updated, the
+/// forces of the chunk's `elements` into their batches `forces`, their states updated, the
 /// chunk's energies summed in element order.
 pub struct StressPathChunk<'a, F: Formulation, M: ConstitutiveModel> {
     pub formulation: &'a F,
@@ -43,86 +92,83 @@ pub struct StressPathChunk<'a, F: Formulation, M: ConstitutiveModel> {
     pub screen: Option<&'a ElasticScreen>,
     /// Nodal displacements, m.
     pub u: &'a [f64],
-    pub first: usize,
-    pub forces: &'a mut [ElementVector],
-    pub states: &'a mut [M::State],
+    pub elements: Range<usize>,
+    pub forces: &'a mut [BatchForces],
+    /// The chunk's material states, `POINTS` batches per batch of elements.
+    pub states: &'a mut [M::Batch],
 }
 
 impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> {
     type Output = ElementEnergy;
     #[inline(always)]
     fn run(self) -> ElementEnergy {
-        let (formulation, material, u, first) =
-            (self.formulation, self.material, self.u, self.first);
-        let (forces, states) = (self.forces, self.states);
+        let (formulation, material, u) = (self.formulation, self.material, self.u);
+        let (forces, states, first) = (self.forces, self.states, self.elements.start);
         let mut energy = ElementEnergy::default();
-        for (k0, batch_forces) in (0..).step_by(LANES).zip(forces.chunks_mut(LANES)) {
-            let e0 = first + k0;
-            let mut elements = [[0.0; 8]; LANES];
-            let mut active = [false; LANES];
-            // Screened lanes' forces go straight to `batch_forces`, their energies here.
-            let mut lane_energy = [ElementEnergy::default(); LANES];
-            for (l, fe) in batch_forces.iter_mut().enumerate() {
-                let e = gather(formulation.nodes(e0 + l), u);
-                elements[l] = e;
-                let lane_states = &states[(k0 + l) * F::POINTS..(k0 + l + 1) * F::POINTS];
-                match self
-                    .screen
-                    .and_then(|s| s.element(formulation, material, e0 + l, &e, lane_states))
-                {
-                    Some((f, en)) => (*fe, lane_energy[l]) = (f, en),
-                    None => active[l] = true,
+        for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(forces) {
+            let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
+            let b = e0 / LANES;
+            let ue = gather_lanes(formulation, e0, lanes, u);
+            let mut active = Mask::first(lanes);
+            // The screened lanes: virgin (every point) and below the screen's bound.
+            // (No product when no lane is virgin: yielded elements never take it.)
+            let mut screened = None;
+            if let Some(screen) = self.screen {
+                let mut virgin = active;
+                for batch in &states[k0 / LANES * F::POINTS..][..F::POINTS] {
+                    virgin = Lanes::and(virgin, material.virgin::<Lanes>(batch, b));
+                }
+                if Lanes::any(virgin) {
+                    let (f, en, below) = screen.product(formulation, b, &ue);
+                    active = Lanes::and(active, Lanes::not(Lanes::and(virgin, below)));
+                    screened = Some((f, en));
                 }
             }
-            if active.iter().any(|&a| a) {
-                // Into lanes only when some lane takes the stress path.
-                let mut ue = [Lanes::splat(0.0); 8];
-                for (l, e) in elements.iter().enumerate() {
-                    for (j, &x) in e.iter().enumerate() {
-                        ue[j].0[l] = x;
-                    }
-                }
-                let lanes = (&mut *states, k0 * F::POINTS, active);
-                let (f, en) = response(formulation, material, e0 / LANES, &ue, lanes);
-                for (l, fe) in batch_forces.iter_mut().enumerate() {
-                    if active[l] {
-                        for (x, lanes) in fe.iter_mut().zip(&f) {
-                            *x = lanes.0[l];
+            let (f, en) = match screened {
+                Some(screened) if !Lanes::any(active) => screened,
+                _ => {
+                    let batches = &mut states[k0 / LANES * F::POINTS..][..F::POINTS];
+                    let lanes_states = (batches, active);
+                    let (mut f, mut en) = response(formulation, material, b, &ue, lanes_states);
+                    if let Some((fk, ek)) = screened {
+                        let screened_lanes = Lanes::not(active);
+                        for (x, k) in f.iter_mut().zip(fk) {
+                            *x = Lanes::select(screened_lanes, k, *x);
                         }
-                        lane_energy[l] = en.lane(l);
+                        en = Energy::select(screened_lanes, ek, en);
                     }
+                    (f, en)
                 }
-            }
-            for en in &lane_energy[..batch_forces.len()] {
-                energy += *en;
-            }
+            };
+            *batch_forces = f;
+            add_lanes(&mut energy, &en, lanes);
         }
         energy
     }
 }
 
-/// The stiffness-product chunk kernel (`K_e u_e` element by element, each a vector over the
-/// matrix rows).
+/// The stiffness-product chunk kernel (`K_e u_e`, in lanes).
 pub struct LinearChunk<'a, F: Formulation> {
     pub kernel: &'a LinearKernel,
     pub formulation: &'a F,
     /// Nodal displacements, m.
     pub u: &'a [f64],
-    pub first: usize,
-    pub forces: &'a mut [ElementVector],
+    pub elements: Range<usize>,
+    pub forces: &'a mut [BatchForces],
 }
 
 impl<F: Formulation> Kernel for LinearChunk<'_, F> {
     type Output = ElementEnergy;
     #[inline(always)]
     fn run(self) -> ElementEnergy {
+        let (formulation, u, first) = (self.formulation, self.u, self.elements.start);
         let mut energy = ElementEnergy::default();
-        for (k, fe) in self.forces.iter_mut().enumerate() {
-            let (force, en) = self
-                .kernel
-                .element(self.formulation, self.first + k, self.u);
-            *fe = force;
-            energy += en;
+        for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(self.forces) {
+            let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
+            let ue = gather_lanes(formulation, e0, lanes, u);
+            let (f, en) = self.kernel.product(formulation, e0 / LANES, &ue);
+            *batch_forces = f;
+            add_lanes(&mut energy, &en, lanes);
         }
         energy
     }

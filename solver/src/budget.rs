@@ -5,15 +5,17 @@
 use crate::scene::{DtChoice, ElementKind, End, Model, Scene};
 use crate::{Error, Result};
 
-/// Resident bytes per element: the slope of the peak RSS (`/usr/bin/time -f %M`, one step)
-/// between 400 x 80 and 800 x 160 meshes of the example scenes: q4-sri 740 plastic / 568
-/// elastic, q4-full 652 / 500, q4-1pt 380 / 332 bytes. The larger of each, rounded up by
+/// Resident bytes per element: the slope of the peak RSS (`/usr/bin/time -f %M`, one step,
+/// 2 threads) between 400 x 80 and 800 x 160 meshes of the example scenes, measured
+/// 2026-11-23 with batch-major states and no per-element force array: q4-sri 324 plastic /
+/// 158 elastic, q4-full 325 / -, q4-1pt 196 / 154 bytes. The larger of each, rounded up by
 /// ~20 % so that the estimate errs on the high side.
-pub const BYTES_PER_ELEMENT_FULL: f64 = 800.0;
-pub const BYTES_PER_ELEMENT_SRI: f64 = 900.0;
-pub const BYTES_PER_ELEMENT_ONE_POINT: f64 = 450.0;
+pub const BYTES_PER_ELEMENT_FULL: f64 = 400.0;
+pub const BYTES_PER_ELEMENT_SRI: f64 = 400.0;
+pub const BYTES_PER_ELEMENT_ONE_POINT: f64 = 240.0;
 
-/// Resident bytes of a run before any mesh (the 20 x 4 runs above: 6.0 MB).
+/// Resident bytes of a run before any mesh (the 400 x 80 runs above less their elements:
+/// ~7.3 MB).
 pub const BYTES_BASE: f64 = 8.0e6;
 
 /// Bytes per history value held in memory (when it is: not for `impact simulate --out`, which

@@ -11,10 +11,12 @@
 //! (6 mu)`, every `q_p^2 < sigma_y^2`: the radial return would take its elastic branch at
 //! every point and leave the state unchanged, and `K_e u_e` is its force up to round-off.
 
-use crate::element::{ElementEnergy, ElementVector, Formulation};
+use crate::element::{ElementEnergy, ElementVector, Energy, Formulation};
+use crate::geometry::Vector;
 use crate::heap::vec_bytes;
 use crate::material::ConstitutiveModel;
-use crate::mesh::Mesh;
+use crate::real::Real;
+use crate::simd::{Lanes, LANES};
 use crate::stiffness::LinearKernel;
 
 /// Fraction of the bound an element may reach on the fast path. `W` from the stiffness
@@ -26,8 +28,9 @@ const SAFETY: f64 = 0.999;
 /// Stiffness matrices and, per element, the strain energy below which it is certainly elastic.
 pub struct ElasticScreen {
     kernel: LinearKernel,
-    /// Per element: `SAFETY w_min sigma_y^2 / (6 mu)`, J.
-    limit: Vec<f64>,
+    /// Per batch of [`LANES`] elements, in lanes: `SAFETY w_min sigma_y^2 / (6 mu)`, J (0 in
+    /// the missing lanes of a partial batch: nothing is below it).
+    limit: Vec<Lanes>,
 }
 
 impl ElasticScreen {
@@ -35,19 +38,18 @@ impl ElasticScreen {
     pub fn new<F: Formulation, M: ConstitutiveModel>(
         formulation: &F,
         material: &M,
-        mesh: &Mesh,
     ) -> Option<ElasticScreen> {
         let yield_stress = material.virgin_yield_stress()?;
         let elastic = material.elastic();
         let per_weight = SAFETY * yield_stress * yield_stress / (6.0 * elastic.mu);
-        let limit = (0..formulation.n_elements())
-            .map(|e| {
-                let w = formulation.weights(e);
-                per_weight * w[..F::POINTS].iter().copied().fold(f64::INFINITY, f64::min)
-            })
-            .collect();
+        let mut limit = vec![Lanes::splat(0.0); formulation.n_elements().div_ceil(LANES)];
+        for e in 0..formulation.n_elements() {
+            let w = formulation.weights::<f64>(e);
+            let w_min = w[..F::POINTS].iter().copied().fold(f64::INFINITY, f64::min);
+            limit[e / LANES].0[e % LANES] = per_weight * w_min;
+        }
         Some(ElasticScreen {
-            kernel: LinearKernel::new(formulation, elastic, mesh),
+            kernel: LinearKernel::new(formulation, elastic),
             limit,
         })
     }
@@ -57,9 +59,32 @@ impl ElasticScreen {
         self.kernel.heap_bytes() + vec_bytes(&self.limit)
     }
 
+    /// `K_e u_e` of `at` (an element, or a batch in lanes) at its displacements `ue` (m):
+    /// forces, energies, and the lanes certainly below yield at every point if they have
+    /// never yielded (the caller's part: those lanes may take the forces; the others run the
+    /// plastic stress path).
+    #[inline(always)]
+    pub fn product<F: Formulation, R: Real>(
+        &self,
+        formulation: &F,
+        at: usize,
+        ue: &Vector<R>,
+    ) -> (Vector<R>, Energy<R>, R::Mask) {
+        // K_e kills translations: remove node 0's so the energy suffers no cancellation.
+        let (tx, ty) = (ue[0], ue[1]);
+        let mut relative = *ue;
+        for (i, x) in relative.iter_mut().enumerate() {
+            *x = *x - if i % 2 == 0 { tx } else { ty };
+        }
+        let (f, energy) = self.kernel.product(formulation, at, &relative);
+        let limit = R::of_batch(&self.limit[R::batch_of(at)], at);
+        let below = limit.gt(energy.strain);
+        (f, energy, below)
+    }
+
     /// Forces and energies of element `e` at its displacements `ue` (m) by `K_e u_e` when
-    /// every point of it (`states`) is virgin and certainly stays elastic; `None` otherwise
-    /// (the caller runs the plastic stress path).
+    /// every point of it (its lane of `batches`, one per point) is virgin and certainly stays
+    /// elastic; `None` otherwise (the caller runs the plastic stress path).
     #[inline(always)]
     pub fn element<F: Formulation, M: ConstitutiveModel>(
         &self,
@@ -67,17 +92,13 @@ impl ElasticScreen {
         material: &M,
         e: usize,
         ue: &ElementVector,
-        states: &[M::State],
+        batches: &[M::Batch],
     ) -> Option<(ElementVector, ElementEnergy)> {
-        if !states.iter().all(|s| material.is_virgin(s)) {
+        if !batches.iter().all(|b| material.virgin::<f64>(b, e)) {
             return None;
         }
-        // K_e kills translations: remove node 0's so the energy suffers no cancellation.
-        let (tx, ty) = (ue[0], ue[1]);
-        let relative: ElementVector =
-            std::array::from_fn(|i| ue[i] - if i % 2 == 0 { tx } else { ty });
-        let (f, energy) = self.kernel.element_of(formulation, e, &relative);
-        (energy.strain < self.limit[e]).then_some((f, energy))
+        let (f, energy, below) = self.product(formulation, e, ue);
+        below.then_some((f, energy))
     }
 }
 
@@ -88,8 +109,21 @@ mod tests {
     //! near yield the screen must refuse every element the stress path lets yield.
     use super::*;
     use crate::element::{element_response, gather, FullQ4, OnePointQ4, SelectiveQ4};
-    use crate::material::{Elastic, VonMises};
+    use crate::material::{Elastic, PlasticBatch, PlasticState, VonMises};
+    use crate::mesh::Mesh;
     use crate::scene::{Hardening, Material, Plasticity};
+
+    /// Element `e`'s point `states` in its lane of batches.
+    fn in_batches(states: &[PlasticState], e: usize) -> Vec<PlasticBatch> {
+        states
+            .iter()
+            .map(|&s| {
+                let mut batch = PlasticBatch::default();
+                VonMises::set_state(&mut batch, e % LANES, s);
+                batch
+            })
+            .collect()
+    }
 
     fn check<F: Formulation>(make: impl Fn(&Mesh) -> F) {
         let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);
@@ -106,7 +140,7 @@ mod tests {
         })
         .unwrap();
         let formulation = make(&mesh.mesh);
-        let screen = ElasticScreen::new(&formulation, &material, &mesh.mesh).unwrap();
+        let screen = ElasticScreen::new(&formulation, &material).unwrap();
         let (mut fast, mut refused_yielding) = (0, 0);
         // Non-smooth fields with a large rigid translation, from far below yield to far above.
         for amplitude in [1e-7, 1e-6, 3e-6, 1e-5, 3e-5, 1e-4] {
@@ -115,11 +149,12 @@ mod tests {
                 .collect();
             for e in 0..formulation.n_elements() {
                 let ue = gather(formulation.nodes(e), &u);
-                let mut states = [Default::default(); 4];
+                let mut states = [PlasticState::default(); 4];
                 let (f_ref, en_ref) =
                     element_response(&formulation, &material, e, &ue, &mut states[..F::POINTS]);
-                let yielded = !states.iter().all(|s| material.is_virgin(s));
-                match screen.element(&formulation, &material, e, &ue, &states[..F::POINTS]) {
+                let yielded = states.iter().any(|s| s.eqps > 0.0);
+                let batches = in_batches(&states[..F::POINTS], e);
+                match screen.element(&formulation, &material, e, &ue, &batches) {
                     Some((f, en)) => {
                         assert!(!yielded, "element {e} at {amplitude}: screened but yields");
                         let scale = f_ref.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -141,13 +176,11 @@ mod tests {
             "{fast} {refused_yielding}"
         );
         // A yielded element is never screened, even when it is elastic again.
-        let mut states = [Default::default(); 4];
-        states[0] = crate::material::PlasticState {
-            eqps: 1e-9,
-            ..Default::default()
-        };
+        let mut states = [PlasticState::default(); 4];
+        states[0].eqps = 1e-9;
+        let batches = in_batches(&states[..F::POINTS], 0);
         assert!(screen
-            .element(&formulation, &material, 0, &[0.0; 8], &states[..F::POINTS])
+            .element(&formulation, &material, 0, &[0.0; 8], &batches)
             .is_none());
     }
 
@@ -162,6 +195,6 @@ mod tests {
     fn an_elastic_material_has_no_screen() {
         let mesh = crate::mesh::test_plate_mesh(4, 2, 1.0);
         let f = SelectiveQ4::new(&mesh.mesh, 0.2).unwrap();
-        assert!(ElasticScreen::new(&f, &Elastic::new(207e9, 0.3), &mesh.mesh).is_none());
+        assert!(ElasticScreen::new(&f, &Elastic::new(207e9, 0.3)).is_none());
     }
 }

@@ -15,8 +15,8 @@ use crate::geometry::{PointGeometry, SharedBatches, Vector, NODE_XI};
 use crate::heap::vec_bytes;
 use crate::material::{ConstitutiveModel, Elastic};
 use crate::mesh::Mesh;
-use crate::real::Real;
-use crate::simd::Lanes;
+use crate::real::{Real, THIRD};
+use crate::simd::{Lanes, LANES};
 
 pub type ElementVector = [f64; 8];
 
@@ -46,6 +46,18 @@ impl<R: Real> std::ops::AddAssign for Energy<R> {
         self.strain += o.strain;
         self.plastic_work += o.plastic_work;
         self.hourglass += o.hourglass;
+    }
+}
+
+impl<R: Real> Energy<R> {
+    /// Per lane: `a` where `mask`, else `b`.
+    #[inline(always)]
+    pub fn select(mask: R::Mask, a: Energy<R>, b: Energy<R>) -> Energy<R> {
+        Energy {
+            strain: R::select(mask, a.strain, b.strain),
+            plastic_work: R::select(mask, a.plastic_work, b.plastic_work),
+            hourglass: R::select(mask, a.hourglass, b.hourglass),
+        }
     }
 }
 
@@ -80,24 +92,62 @@ pub trait Formulation: Sync {
     fn nodes(&self, e: usize) -> [u32; 4] {
         self.connectivity()[e]
     }
-    /// Strain at each integration point of `at` (the first `POINTS` entries are used):
-    /// point x component.
-    fn strains<R: Real>(&self, at: usize, u: &Vector<R>) -> [[R; 4]; 4];
+    /// What the points of `at` share for displacements `u` (B-bar: the centroid dilatation),
+    /// computed once per evaluation; unused by the others.
+    #[inline(always)]
+    fn shared<R: Real>(&self, _at: usize, _u: &Vector<R>) -> R {
+        R::splat(0.0)
+    }
+    /// Strain at integration point `p` of `at` (`shared`: [`Formulation::shared`]).
+    fn strain<R: Real>(&self, at: usize, p: usize, u: &Vector<R>, shared: R) -> [R; 4];
+    /// Strain at each integration point of `at` (the first `POINTS` entries are set): point x
+    /// component.
+    #[inline(always)]
+    fn strains<R: Real>(&self, at: usize, u: &Vector<R>) -> [[R; 4]; 4] {
+        let shared = self.shared(at, u);
+        let mut strains = [[R::splat(0.0); 4]; 4];
+        for (p, s) in strains.iter_mut().enumerate().take(Self::POINTS) {
+            *s = self.strain(at, p, u, shared);
+        }
+        strains
+    }
     /// Integration weight of each point of `at`: det J * W (m^3).
     fn weights<R: Real>(&self, at: usize) -> [R; 4];
     /// Natural coordinates of each integration point.
     fn point_xi(&self) -> &'static [[f64; 2]];
+    /// Adds point `p`'s part of the nodal forces for its stress `s` (Pa) to `f` (N), and to
+    /// `acc` what the points' forces share (B-bar: the weighted mean stress); points in order
+    /// from 0, `f` and `acc` from 0.
+    fn add_point_forces<R: Real>(
+        &self,
+        at: usize,
+        p: usize,
+        s: &[R; 4],
+        f: &mut Vector<R>,
+        acc: &mut R,
+    );
+    /// Adds to `f` what the points' forces share, from their `acc`.
+    #[inline(always)]
+    fn finish_forces<R: Real>(&self, _at: usize, _acc: R, _f: &mut Vector<R>) {}
     /// Nodal forces `sum_p w_p B_p^T s_p` of the point stresses (point x component, Pa), N.
-    fn forces<R: Real>(&self, at: usize, stresses: &[[R; 4]; 4]) -> Vector<R>;
+    #[inline(always)]
+    fn forces<R: Real>(&self, at: usize, stresses: &[[R; 4]; 4]) -> Vector<R> {
+        let (mut f, mut acc) = ([R::splat(0.0); 8], R::splat(0.0));
+        for (p, s) in stresses.iter().enumerate().take(Self::POINTS) {
+            self.add_point_forces(at, p, s, &mut f, &mut acc);
+        }
+        self.finish_forces(at, acc, &mut f);
+        f
+    }
     /// Adds hourglass forces to `f`, returns the hourglass energy (J).
     #[inline(always)]
     fn add_hourglass<R: Real>(&self, _at: usize, _u: &Vector<R>, _f: &mut Vector<R>) -> R {
         R::splat(0.0)
     }
-    /// Hourglass energy (J) of element `e` at `u`, without forces.
+    /// Hourglass energy (J) of `at` at `u`, without forces.
     #[inline(always)]
-    fn hourglass_energy(&self, _e: usize, _u: &ElementVector) -> f64 {
-        0.0
+    fn hourglass_energy<R: Real>(&self, _at: usize, _u: &Vector<R>) -> R {
+        R::splat(0.0)
     }
     /// Element volume (area * W), m^3.
     fn volume(&self, e: usize) -> f64;
@@ -106,33 +156,36 @@ pub trait Formulation: Sync {
 }
 
 /// Internal nodal forces and energies of `at` ([`Formulation`]), updating the material
-/// states of its points: lane `l`'s point `p` is `states[first_state + l * POINTS + p]`
-/// when `active` has lane `l` (inactive lanes: states untouched, results unspecified).
+/// states of its points: point `p`'s are `batches[p]` (the batch that holds `at`), written
+/// where `active` has the lane (inactive lanes: states untouched, results unspecified).
 #[inline(always)]
 pub fn response<F: Formulation, M: ConstitutiveModel, R: Real>(
     formulation: &F,
     material: &M,
     at: usize,
     u: &Vector<R>,
-    (states, first_state, active): (&mut [M::State], usize, R::Mask),
+    (batches, active): (&mut [M::Batch], R::Mask),
 ) -> (Vector<R>, Energy<R>) {
-    let strains = formulation.strains(at, u);
+    // Point by point (strain, update, forces), so that only one point's values are live:
+    // the same operations in the same order as `strains`, then `forces`.
+    let shared = formulation.shared(at, u);
     let w = formulation.weights::<R>(at);
-    let mut stresses = [[R::splat(0.0); 4]; 4];
+    let (mut f, mut acc) = ([R::splat(0.0); 8], R::splat(0.0));
     let mut energy = Energy::<R>::default();
-    for p in 0..F::POINTS {
-        let r = material.update(&strains[p], states, first_state + p, F::POINTS, active);
-        stresses[p] = r.stress;
+    for (p, batch) in batches.iter_mut().enumerate().take(F::POINTS) {
+        let strain = formulation.strain(at, p, u, shared);
+        let r = material.update(&strain, batch, at, active);
         energy.strain += w[p] * r.strain_energy_density;
         energy.plastic_work += w[p] * r.plastic_work_density;
+        formulation.add_point_forces(at, p, &r.stress, &mut f, &mut acc);
     }
-    let mut f = formulation.forces(at, &stresses);
+    formulation.finish_forces(at, acc, &mut f);
     energy.hourglass = formulation.add_hourglass(at, u, &mut f);
     (f, energy)
 }
 
-/// [`response`] of element `e` (its `POINTS` material `states`).
-#[inline(always)]
+/// [`response`] of element `e` with its `POINTS` material `states` one per point (not in
+/// batches: for checks and set-ups, not the time loop).
 pub fn element_response<F: Formulation, M: ConstitutiveModel>(
     formulation: &F,
     material: &M,
@@ -140,7 +193,22 @@ pub fn element_response<F: Formulation, M: ConstitutiveModel>(
     u: &ElementVector,
     states: &mut [M::State],
 ) -> (ElementVector, ElementEnergy) {
-    response(formulation, material, e, u, (states, 0, true))
+    let lane = e % LANES;
+    let mut batches = [M::Batch::default(); 4];
+    for (batch, &state) in batches.iter_mut().zip(states.iter()) {
+        M::set_state(batch, lane, state);
+    }
+    let out = response(
+        formulation,
+        material,
+        e,
+        u,
+        (&mut batches[..F::POINTS], true),
+    );
+    for (batch, state) in batches.iter().zip(states.iter_mut()) {
+        *state = M::state_of(batch, lane);
+    }
+    out
 }
 
 /// Elastic element stiffness (8x8, N/m), column by column from the force response.
@@ -218,20 +286,18 @@ pub struct FullQ4 {
 
 impl FullQ4 {
     pub fn new(mesh: &Mesh, width: f64) -> Result<FullQ4> {
-        let points: Vec<[PointGeometry<f64>; 4]> = (0..mesh.elements.len())
-            .map(|e| gauss_geometry(mesh, e))
-            .collect::<Result<_>>()?;
         Ok(FullQ4 {
             nodes: mesh.elements.clone(),
             points: SharedBatches::new(
-                &points,
+                mesh.elements.len(),
+                |e| gauss_geometry(mesh, e),
                 |g, key| g.iter().for_each(|p| p.bits(key)),
                 |b| {
                     std::array::from_fn(|p| {
                         PointGeometry::lanes(&b.iter().map(|g| g[p]).collect::<Vec<_>>())
                     })
                 },
-            ),
+            )?,
             width,
         })
     }
@@ -249,14 +315,8 @@ impl Formulation for FullQ4 {
         &self.nodes
     }
     #[inline(always)]
-    fn strains<R: Real>(&self, at: usize, u: &Vector<R>) -> [[R; 4]; 4] {
-        // Loops, not `array::map`: its closure may stay out of line, compiled for the
-        // baseline instruction set (see `crate::simd::Kernel`).
-        let mut strains = [[R::splat(0.0); 4]; 4];
-        for (s, g) in strains.iter_mut().zip(self.points::<R>(at)) {
-            *s = g.strain(at, u);
-        }
-        strains
+    fn strain<R: Real>(&self, at: usize, p: usize, u: &Vector<R>, _: R) -> [R; 4] {
+        self.points::<R>(at)[p].strain(at, u)
     }
     #[inline(always)]
     fn weights<R: Real>(&self, at: usize) -> [R; 4] {
@@ -270,12 +330,16 @@ impl Formulation for FullQ4 {
         &GAUSS_XI
     }
     #[inline(always)]
-    fn forces<R: Real>(&self, at: usize, s: &[[R; 4]; 4]) -> Vector<R> {
-        let mut f = [R::splat(0.0); 8];
-        for (s, g) in s.iter().zip(self.points::<R>(at)) {
-            g.add_divergence(at, g.det_j::<R>(at) * self.width, s, &mut f);
-        }
-        f
+    fn add_point_forces<R: Real>(
+        &self,
+        at: usize,
+        p: usize,
+        s: &[R; 4],
+        f: &mut Vector<R>,
+        _: &mut R,
+    ) {
+        let g = &self.points::<R>(at)[p];
+        g.add_divergence(at, g.det_j::<R>(at) * self.width, s, f);
     }
     fn volume(&self, e: usize) -> f64 {
         self.weights::<f64>(e).iter().sum()
@@ -293,12 +357,14 @@ pub struct SelectiveQ4 {
 
 impl SelectiveQ4 {
     pub fn new(mesh: &Mesh, width: f64) -> Result<SelectiveQ4> {
-        let centroid: Vec<PointGeometry<f64>> = (0..mesh.elements.len())
-            .map(|e| centroid_geometry(mesh, e).map(|c| c.0))
-            .collect::<Result<_>>()?;
         Ok(SelectiveQ4 {
             full: FullQ4::new(mesh, width)?,
-            centroid: SharedBatches::new(&centroid, PointGeometry::bits, PointGeometry::lanes),
+            centroid: SharedBatches::new(
+                mesh.elements.len(),
+                |e| centroid_geometry(mesh, e).map(|c| c.0),
+                PointGeometry::bits,
+                PointGeometry::lanes,
+            )?,
         })
     }
 }
@@ -308,17 +374,18 @@ impl Formulation for SelectiveQ4 {
     fn connectivity(&self) -> &[[u32; 4]] {
         self.full.connectivity()
     }
-    /// B-bar strain: the point's volumetric part replaced by the centroid's, `zz` carrying
-    /// the shift so that the trace is the centroid dilatation.
+    /// The centroid dilatation.
     #[inline(always)]
-    fn strains<R: Real>(&self, at: usize, u: &Vector<R>) -> [[R; 4]; 4] {
-        let centroid_dilatation = self.centroid.batch::<R>(at).dilatation(at, u);
-        let mut strains = self.full.strains(at, u);
-        for s in &mut strains {
-            let shift = (centroid_dilatation - s[0] - s[1]) / 3.0;
-            *s = [s[0] + shift, s[1] + shift, shift, s[3]];
-        }
-        strains
+    fn shared<R: Real>(&self, at: usize, u: &Vector<R>) -> R {
+        self.centroid.batch::<R>(at).dilatation(at, u)
+    }
+    /// B-bar strain: the point's volumetric part replaced by the centroid's (`centroid`:
+    /// its dilatation), `zz` carrying the shift so that the trace is the centroid dilatation.
+    #[inline(always)]
+    fn strain<R: Real>(&self, at: usize, p: usize, u: &Vector<R>, centroid: R) -> [R; 4] {
+        let s = self.full.strain(at, p, u, centroid);
+        let shift = (centroid - s[0] - s[1]) * THIRD;
+        [s[0] + shift, s[1] + shift, shift, s[3]]
     }
     #[inline(always)]
     fn weights<R: Real>(&self, at: usize) -> [R; 4] {
@@ -327,27 +394,34 @@ impl Formulation for SelectiveQ4 {
     fn point_xi(&self) -> &'static [[f64; 2]] {
         &GAUSS_XI
     }
-    /// Deviatoric stresses at the Gauss points, the weighted mean stress at the centroid.
+    /// The deviatoric stress at the Gauss point; its weighted mean stress into `mean_total`.
     #[inline(always)]
-    fn forces<R: Real>(&self, at: usize, s: &[[R; 4]; 4]) -> Vector<R> {
-        let mut f = [R::splat(0.0); 8];
-        let c = self.centroid.batch::<R>(at);
-        let mut mean_total = R::splat(0.0);
-        for (s, g) in s.iter().zip(self.full.points::<R>(at)) {
-            let w = g.det_j::<R>(at) * self.full.width;
-            let mean = (s[0] + s[1] + s[2]) / 3.0;
-            mean_total += w * mean;
-            for a in 0..4 {
-                let (dx, dy) = (g.dndx::<R>(a, at), g.dndy::<R>(a, at));
-                f[2 * a] += w * (dx * (s[0] - mean) + dy * s[3]);
-                f[2 * a + 1] += w * (dy * (s[1] - mean) + dx * s[3]);
-            }
+    fn add_point_forces<R: Real>(
+        &self,
+        at: usize,
+        p: usize,
+        s: &[R; 4],
+        f: &mut Vector<R>,
+        mean_total: &mut R,
+    ) {
+        let g = &self.full.points::<R>(at)[p];
+        let w = g.det_j::<R>(at) * self.full.width;
+        let mean = (s[0] + s[1] + s[2]) * THIRD;
+        *mean_total += w * mean;
+        for a in 0..4 {
+            let (dx, dy) = (g.dndx::<R>(a, at), g.dndy::<R>(a, at));
+            f[2 * a] += w * (dx * (s[0] - mean) + dy * s[3]);
+            f[2 * a + 1] += w * (dy * (s[1] - mean) + dx * s[3]);
         }
+    }
+    /// The points' weighted mean stress at the centroid.
+    #[inline(always)]
+    fn finish_forces<R: Real>(&self, at: usize, mean_total: R, f: &mut Vector<R>) {
+        let c = self.centroid.batch::<R>(at);
         for a in 0..4 {
             f[2 * a] += mean_total * c.dndx::<R>(a, at);
             f[2 * a + 1] += mean_total * c.dndy::<R>(a, at);
         }
-        f
     }
     fn volume(&self, e: usize) -> f64 {
         self.full.volume(e)
@@ -410,26 +484,25 @@ impl OnePoint<f64> {
 impl OnePointQ4 {
     /// `kappa`: hourglass coefficient; `p_modulus`: lambda + 2 mu, Pa.
     pub fn new(mesh: &Mesh, width: f64, kappa: f64, p_modulus: f64) -> Result<OnePointQ4> {
-        let per_element: Vec<OnePoint<f64>> = (0..mesh.elements.len())
-            .map(|e| {
-                let (c, area) = centroid_geometry(mesh, e)?;
-                let xy = shape_coords(mesh, e);
-                let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
-                let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
-                let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
-                Ok(OnePoint {
-                    centroid: c,
-                    volume: area * width,
-                    gamma: std::array::from_fn(|a| {
-                        0.25 * (HOURGLASS_H[a] - hx * c.dndx[a] - hy * c.dndy[a])
-                    }),
-                    stiffness: kappa * p_modulus * area * width * bb,
-                })
+        let element = |e| {
+            let (c, area) = centroid_geometry(mesh, e)?;
+            let xy = shape_coords(mesh, e);
+            let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
+            let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
+            let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
+            Ok(OnePoint {
+                centroid: c,
+                volume: area * width,
+                gamma: std::array::from_fn(|a| {
+                    0.25 * (HOURGLASS_H[a] - hx * c.dndx[a] - hy * c.dndy[a])
+                }),
+                stiffness: kappa * p_modulus * area * width * bb,
             })
-            .collect::<Result<_>>()?;
+        };
+        let n = mesh.elements.len();
         Ok(OnePointQ4 {
             nodes: mesh.elements.clone(),
-            data: SharedBatches::new(&per_element, OnePoint::bits, OnePoint::lanes),
+            data: SharedBatches::new(n, element, OnePoint::bits, OnePoint::lanes)?,
         })
     }
 
@@ -460,9 +533,8 @@ impl Formulation for OnePointQ4 {
         &self.nodes
     }
     #[inline(always)]
-    fn strains<R: Real>(&self, at: usize, u: &Vector<R>) -> [[R; 4]; 4] {
-        let s = self.data.batch::<R>(at).centroid.strain(at, u);
-        [s, s, s, s]
+    fn strain<R: Real>(&self, at: usize, _: usize, u: &Vector<R>, _: R) -> [R; 4] {
+        self.data.batch::<R>(at).centroid.strain(at, u)
     }
     #[inline(always)]
     fn weights<R: Real>(&self, at: usize) -> [R; 4] {
@@ -478,12 +550,17 @@ impl Formulation for OnePointQ4 {
         &CENTROID_XI
     }
     #[inline(always)]
-    fn forces<R: Real>(&self, at: usize, s: &[[R; 4]; 4]) -> Vector<R> {
-        let mut f = [R::splat(0.0); 8];
+    fn add_point_forces<R: Real>(
+        &self,
+        at: usize,
+        _: usize,
+        s: &[R; 4],
+        f: &mut Vector<R>,
+        _: &mut R,
+    ) {
         let d = self.data.batch::<R>(at);
         d.centroid
-            .add_divergence(at, R::of_batch(&d.volume, at), &s[0], &mut f);
-        f
+            .add_divergence(at, R::of_batch(&d.volume, at), s, f);
     }
     #[inline(always)]
     fn add_hourglass<R: Real>(&self, at: usize, u: &Vector<R>, f: &mut Vector<R>) -> R {
@@ -498,13 +575,9 @@ impl Formulation for OnePointQ4 {
         hourglass_energy_of(k, qx, qy)
     }
     #[inline(always)]
-    fn hourglass_energy(&self, e: usize, u: &ElementVector) -> f64 {
-        let (qx, qy) = self.hourglass_modes(e, u);
-        hourglass_energy_of(
-            Real::of_batch(&self.data.batch::<f64>(e).stiffness, e),
-            qx,
-            qy,
-        )
+    fn hourglass_energy<R: Real>(&self, at: usize, u: &Vector<R>) -> R {
+        let (qx, qy) = self.hourglass_modes(at, u);
+        hourglass_energy_of(R::of_batch(&self.data.batch::<R>(at).stiffness, at), qx, qy)
     }
     fn volume(&self, e: usize) -> f64 {
         self.weights::<f64>(e)[0]

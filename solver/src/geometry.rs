@@ -142,31 +142,37 @@ pub struct SharedBatches<B> {
 }
 
 impl<B> SharedBatches<B> {
-    /// The batches of `per_element`: `bits` appends an element's key (the bits of every value
-    /// it stores), `lanes` makes a batch of up to [`LANES`] elements.
-    pub fn new<T>(
-        per_element: &[T],
+    /// The batches of `n` elements, element `e`'s data `element(e)` (computed a batch at a
+    /// time: the per-element data is never held for the whole mesh): `bits` appends an
+    /// element's key (the bits of every value it stores), `lanes` makes a batch of up to
+    /// [`LANES`] elements. The first error of `element` is returned.
+    pub fn new<T, E>(
+        n: usize,
+        element: impl Fn(usize) -> Result<T, E>,
         bits: impl Fn(&T, &mut Vec<u64>),
         lanes: impl Fn(&[T]) -> B,
-    ) -> SharedBatches<B> {
+    ) -> Result<SharedBatches<B>, E> {
         let mut seen: HashMap<Vec<u64>, u32> = HashMap::new();
         let mut distinct = Vec::new();
-        let index = per_element
-            .chunks(LANES)
-            .map(|batch| {
-                let mut key = Vec::new();
-                for element in batch {
-                    bits(element, &mut key);
-                }
-                *seen.entry(key).or_insert_with(|| {
-                    distinct.push(lanes(batch));
-                    (distinct.len() - 1) as u32
-                })
-            })
-            .collect();
+        let mut index = Vec::with_capacity(n.div_ceil(LANES));
+        let mut batch = Vec::with_capacity(LANES);
+        for first in (0..n).step_by(LANES) {
+            batch.clear();
+            for e in first..(first + LANES).min(n) {
+                batch.push(element(e)?);
+            }
+            let mut key = Vec::new();
+            for element in &batch {
+                bits(element, &mut key);
+            }
+            index.push(*seen.entry(key).or_insert_with(|| {
+                distinct.push(lanes(&batch));
+                (distinct.len() - 1) as u32
+            }));
+        }
         let mut shared = SharedBatches { distinct, index };
         shared.distinct.shrink_to_fit();
-        shared
+        Ok(shared)
     }
 
     /// The batch that holds `at` ([`Real::batch_of`]: an element or a batch).

@@ -8,7 +8,7 @@ use crate::assembly::{each_element, Assembly};
 use crate::batch;
 use crate::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{element_response, gather, lumped_masses, ElementEnergy, Formulation};
+use crate::element::{gather, lumped_masses, response, ElementEnergy, Formulation};
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::heap;
@@ -19,9 +19,9 @@ use crate::impactor::RigidImpactor;
 use crate::load::PrescribedLoad;
 use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
-use crate::mesh::{Mesh, PlateMesh};
+use crate::mesh::PlateMesh;
 use crate::scene::{DtChoice, End, Impactor, Scene};
-use crate::simd::{dispatch, KernelPath};
+use crate::simd::{dispatch, KernelPath, LANES};
 use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
@@ -47,8 +47,9 @@ pub const INVERSION_CHECK_EVERY: u64 = 32;
 pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     pub formulation: F,
     pub material: M,
-    /// `POINTS` states per element (empty for elastic models: zero-sized).
-    pub states: Vec<M::State>,
+    /// The material states, batch-major: `POINTS` batches (one per point) per batch of
+    /// [`LANES`] elements (zero-sized for elastic models); [`PlateModel::state`] reads one.
+    pub states: Vec<M::Batch>,
     /// Lumped nodal mass, kg.
     pub mass: Vec<f64>,
     /// 1/mass per dof, 0 on constrained dofs.
@@ -82,10 +83,10 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
         let assembly = Assembly::for_mesh(
             formulation.connectivity(),
             mesh.mesh.n_nodes(),
-            std::mem::size_of::<M::State>() > 0,
+            std::mem::size_of::<M::Batch>() > 0,
         );
         PlateModel {
-            states: vec![M::State::default(); n * F::POINTS],
+            states: vec![M::Batch::default(); n.div_ceil(LANES) * F::POINTS],
             formulation,
             material,
             mass,
@@ -135,8 +136,8 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 nodes,
-                |first, forces, states| {
-                    each_element(first, forces, states, F::POINTS, |e, _| {
+                |elements, forces, states| {
+                    each_element(elements, forces, states, F::POINTS, |e, _| {
                         k.element(formulation, e, u)
                     })
                 },
@@ -146,12 +147,12 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 nodes,
-                |first, forces, _| {
+                |elements, forces, _| {
                     let chunk = batch::LinearChunk {
                         kernel: k,
                         formulation,
                         u,
-                        first,
+                        elements,
                         forces,
                     };
                     dispatch(isa, chunk)
@@ -162,13 +163,13 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 nodes,
-                |first, forces, states| {
-                    each_element(first, forces, states, F::POINTS, |e, states| {
+                |elements, forces, states| {
+                    each_element(elements, forces, states, F::POINTS, |e, states| {
                         let ue = gather(formulation.nodes(e), u);
                         screen
                             .and_then(|s| s.element(formulation, material, e, &ue, states))
                             .unwrap_or_else(|| {
-                                element_response(formulation, material, e, &ue, states)
+                                response(formulation, material, e, &ue, (states, true))
                             })
                     })
                 },
@@ -178,13 +179,13 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 nodes,
-                |first, forces, states| {
+                |elements, forces, states| {
                     let chunk = batch::StressPathChunk {
                         formulation,
                         material,
                         screen,
                         u,
-                        first,
+                        elements,
                         forces,
                         states,
                     };
@@ -197,15 +198,15 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
 
     /// Switches the internal forces to precomputed element stiffness matrices. Only valid
     /// for a linear elastic material (the caller's guarantee: `M = Elastic`).
-    pub fn with_linear_kernel(mut self, mesh: &Mesh, elastic: &Elastic) -> Self {
-        self.linear = Some(LinearKernel::new(&self.formulation, elastic, mesh));
+    pub fn with_linear_kernel(mut self, elastic: &Elastic) -> Self {
+        self.linear = Some(LinearKernel::new(&self.formulation, elastic));
         self
     }
 
     /// Lets elements that never yielded respond by `K_e u_e` while they certainly stay
     /// elastic (no effect for a material that never yields).
-    pub fn with_elastic_screen(mut self, mesh: &Mesh) -> Self {
-        self.screen = ElasticScreen::new(&self.formulation, &self.material, mesh);
+    pub fn with_elastic_screen(mut self) -> Self {
+        self.screen = ElasticScreen::new(&self.formulation, &self.material);
         self
     }
 
@@ -216,22 +217,25 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
 
     /// The critical time step from the global estimate of omega_max (power iteration, the
     /// contact `spring` included, times the safety factor), s.
-    pub fn global_time_step(&self, mesh: &Mesh, spring: Option<Spring>) -> f64 {
+    pub fn global_time_step(&self, spring: Option<Spring>) -> f64 {
         stable_step::global_estimate(
             &self.formulation,
             self.material.elastic(),
-            mesh,
             &self.inverse_mass,
             spring,
         )
+    }
+
+    /// The material state of integration point `p` of element `e`.
+    pub fn state(&self, e: usize, p: usize) -> M::State {
+        M::state_of(&self.states[e / LANES * F::POINTS + p], e % LANES)
     }
 
     /// Stress at integration point `p` of element `e` for displacements `u`.
     pub fn point_stress(&self, e: usize, p: usize, u: &[f64]) -> Stress {
         let ue = gather(self.formulation.nodes(e), u);
         let strain = self.formulation.strains(e, &ue)[p];
-        self.material
-            .stress(&strain, &self.states[e * F::POINTS + p])
+        self.material.stress(&strain, &self.state(e, p))
     }
 
     /// Element-average stress and equivalent plastic strain (for field output).
@@ -245,10 +249,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
             for c in 0..4 {
                 s[c] += wp / total * sp[c];
             }
-            k += wp / total
-                * self
-                    .material
-                    .equivalent_plastic_strain(&self.states[e * F::POINTS + p]);
+            k += wp / total * self.material.equivalent_plastic_strain(&self.state(e, p));
         }
         (s, k)
     }
@@ -733,7 +734,7 @@ fn critical_step<F: Formulation, M: ConstitutiveModel>(
                         / mesh.symmetry_factor,
                 }
             });
-            model.global_time_step(&mesh.mesh, spring)
+            model.global_time_step(spring)
         }
     }
 }

@@ -4,8 +4,9 @@
 //! Strains are `[xx, yy, zz, gamma_xy]` (engineering shear; `zz` is 0 except in the B-bar
 //! modified strain), stresses `[xx, yy, zz, xy]`, in Pa.
 
-use crate::real::Real;
+use crate::real::{Real, THIRD};
 use crate::scene::{Hardening, Material as MaterialSpec};
+use crate::simd::Lanes;
 
 pub type Strain = [f64; 4];
 pub type Stress = [f64; 4];
@@ -25,20 +26,28 @@ pub struct Response<R> {
 /// What a material returns at one integration point of one element.
 pub type PointResponse = Response<f64>;
 
-/// A constitutive model with its per-point state. Elastic models have a zero-sized state, so
-/// an elastic run allocates no plasticity state at all.
+/// A constitutive model with its per-point state, stored batch-major: one [`Self::Batch`]
+/// holds the states of one point of [`crate::simd::LANES`] consecutive elements in lanes,
+/// so the batched kernels load and store whole registers. Elastic models have zero-sized
+/// states, so an elastic run allocates no plasticity state at all.
 pub trait ConstitutiveModel: Sync {
+    /// The state of one point.
     type State: Copy + Default + Send + Sync + std::fmt::Debug;
-    /// Stress for the total strain (components x lanes) at one point of [`Real::LANES`]
-    /// elements, updating the states (called once per point per step): lane `l`'s state is
-    /// `states[first + l * stride]` when `active` has lane `l`; an inactive lane's state is
-    /// neither read nor written and its results are unspecified.
+    /// The states of one point of a batch of elements, in lanes.
+    type Batch: Copy + Default + Send + Sync + std::fmt::Debug;
+    /// Lane `l`'s state.
+    fn state_of(batch: &Self::Batch, l: usize) -> Self::State;
+    /// Sets lane `l`'s state.
+    fn set_state(batch: &mut Self::Batch, l: usize, state: Self::State);
+    /// Stress for the total strain (components x lanes) at one point of `at` (an element for
+    /// `R = f64`, its lane of `batch`; a batch for [`Lanes`]), updating the states in `batch`
+    /// (called once per point per step) where `active` has the lane; an inactive lane's state
+    /// is not written and its results are unspecified.
     fn update<R: Real>(
         &self,
         strain: &[R; 4],
-        states: &mut [Self::State],
-        first: usize,
-        stride: usize,
+        batch: &mut Self::Batch,
+        at: usize,
         active: R::Mask,
     ) -> Response<R>;
     /// Stress for the total strain and a converged state, without changing it.
@@ -51,23 +60,24 @@ pub trait ConstitutiveModel: Sync {
     fn virgin_yield_stress(&self) -> Option<f64> {
         None
     }
-    /// Whether a point in `state` has never yielded (its response is still `D eps`).
+    /// Per lane of `at` in `batch`: whether the point has never yielded (its response is
+    /// still `D eps`).
     #[inline(always)]
-    fn is_virgin(&self, _state: &Self::State) -> bool {
-        true
+    fn virgin<R: Real>(&self, _batch: &Self::Batch, _at: usize) -> R::Mask {
+        R::not(R::splat(0.0).gt(R::splat(0.0)))
     }
 }
 
-/// `update(strain of lane l, state of lane l)` for each active lane `l`, one element at a
-/// time (for a tabulated flow curve, whose pieces differ from lane to lane).
+/// `update(strain of lane l, element)` for each active lane `l` of `at`, one element at a
+/// time (for a tabulated flow curve, whose pieces differ from lane to lane). `element` is
+/// what the scalar path calls the lane: `at` itself for `f64`, `l` (lane `l` of the batch)
+/// for [`Lanes`].
 #[inline(always)]
-fn each_lane<R: Real, S>(
+fn each_lane<R: Real>(
     strain: &[R; 4],
-    states: &mut [S],
-    first: usize,
-    stride: usize,
+    at: usize,
     active: R::Mask,
-    update: impl Fn(&Strain, &mut S) -> PointResponse,
+    mut update: impl FnMut(&Strain, usize) -> PointResponse,
 ) -> Response<R> {
     let mut out = Response::<R>::default();
     for l in (0..R::LANES).filter(|&l| R::on(active, l)) {
@@ -77,7 +87,7 @@ fn each_lane<R: Real, S>(
             strain[2].lane(l),
             strain[3].lane(l),
         ];
-        let r = update(&e, &mut states[first + l * stride]);
+        let r = update(&e, if R::LANES == 1 { at } else { l });
         for c in 0..4 {
             out.stress[c].set_lane(l, r.stress[c]);
         }
@@ -131,15 +141,11 @@ pub fn half_contraction<R: Real>(s: &[R; 4], e: &[R; 4]) -> R {
 
 impl ConstitutiveModel for Elastic {
     type State = ();
+    type Batch = ();
+    fn state_of(_: &(), _: usize) {}
+    fn set_state(_: &mut (), _: usize, _: ()) {}
     #[inline(always)]
-    fn update<R: Real>(
-        &self,
-        strain: &[R; 4],
-        _: &mut [()],
-        _: usize,
-        _: usize,
-        _: R::Mask,
-    ) -> Response<R> {
+    fn update<R: Real>(&self, strain: &[R; 4], _: &mut (), _: usize, _: R::Mask) -> Response<R> {
         let stress = self.stress_of(strain);
         Response {
             stress,
@@ -253,7 +259,7 @@ impl<R: Real> FlowLaw<R> for LinearHardening {
     fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R {
         let dk = R::splat(0.0);
         let sy = self.flow_stress(k + dk);
-        let x = (q - dk * three_mu - sy) / (three_mu + self.modulus);
+        let x = (q - dk * three_mu - sy) * (1.0 / (three_mu + self.modulus));
         dk + x
     }
 }
@@ -268,7 +274,7 @@ impl FlowLaw<f64> for FlowCurve {
         let mut dk = 0.0;
         loop {
             let (sy, h, next) = self.piece(k + dk);
-            let x = (q - three_mu * dk - sy) / (three_mu + h);
+            let x = (q - three_mu * dk - sy) * (1.0 / (three_mu + h));
             match next {
                 Some(b) if k + dk + x > b => dk = b - k,
                 _ => return dk + x,
@@ -284,6 +290,15 @@ pub struct PlasticState {
     pub plastic_strain: [f64; 4],
     /// Equivalent plastic strain.
     pub eqps: f64,
+}
+
+/// [`PlasticState`]s of one point of a batch of elements, in lanes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PlasticBatch {
+    /// Plastic strain tensor `[xx, yy, zz, xy]` (tensor shear).
+    pub plastic_strain: [Lanes; 4],
+    /// Equivalent plastic strain.
+    pub eqps: Lanes,
 }
 
 /// Von Mises plasticity with isotropic hardening.
@@ -314,22 +329,19 @@ impl VonMises {
         &self,
         flow: &H,
         strain: &[R; 4],
-        states: &mut [PlasticState],
-        (first, stride, active): (usize, usize, R::Mask),
+        batch: &mut PlasticBatch,
+        (at, active): (usize, R::Mask),
     ) -> Response<R> {
         let mu = self.elastic.mu;
         let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
-        let (mut p, mut k_old) = ([R::splat(0.0); 4], R::splat(0.0));
-        for l in (0..R::LANES).filter(|&l| R::on(active, l)) {
-            let s = &states[first + l * stride];
-            for (pc, &x) in p.iter_mut().zip(&s.plastic_strain) {
-                pc.set_lane(l, x);
-            }
-            k_old.set_lane(l, s.eqps);
+        let mut p = [R::splat(0.0); 4];
+        for (pc, stored) in p.iter_mut().zip(&batch.plastic_strain) {
+            *pc = R::of_batch(stored, at);
         }
+        let k_old = R::of_batch(&batch.eqps, at);
         let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
         let trace = e[0] + e[1] + e[2];
-        let third = trace / 3.0;
+        let third = trace * THIRD;
         let mut dev = [
             (e[0] - third) * (2.0 * mu),
             (e[1] - third) * (2.0 * mu),
@@ -360,16 +372,15 @@ impl VonMises {
             let eqps = k_old + dk;
             let work = (sy_old + flow.flow_stress(eqps)) * 0.5 * dk;
             plastic_work_density = R::select(yields, work, plastic_work_density);
-            for l in (0..R::LANES).filter(|&l| R::on(active, l) && R::on(yields, l)) {
-                states[first + l * stride] = PlasticState {
-                    plastic_strain: [p[0].lane(l), p[1].lane(l), p[2].lane(l), p[3].lane(l)],
-                    eqps: eqps.lane(l),
-                };
+            let write = R::and(active, yields);
+            for (stored, &pc) in batch.plastic_strain.iter_mut().zip(&p) {
+                R::store(stored, at, pc, write);
             }
+            R::store(&mut batch.eqps, at, eqps, write);
         }
         Response {
             stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
-            strain_energy_density: volumetric_energy + q2_final / (6.0 * mu),
+            strain_energy_density: volumetric_energy + q2_final * (1.0 / (6.0 * mu)),
             plastic_work_density,
         }
     }
@@ -377,6 +388,21 @@ impl VonMises {
 
 impl ConstitutiveModel for VonMises {
     type State = PlasticState;
+    type Batch = PlasticBatch;
+
+    fn state_of(batch: &PlasticBatch, l: usize) -> PlasticState {
+        PlasticState {
+            plastic_strain: batch.plastic_strain.map(|x| x.0[l]),
+            eqps: batch.eqps.0[l],
+        }
+    }
+
+    fn set_state(batch: &mut PlasticBatch, l: usize, state: PlasticState) {
+        for (stored, x) in batch.plastic_strain.iter_mut().zip(state.plastic_strain) {
+            stored.0[l] = x;
+        }
+        batch.eqps.0[l] = state.eqps;
+    }
 
     /// The radial return ([`VonMises::radial_return`]), in lanes for linear hardening; a
     /// tabulated curve, whose pieces differ from lane to lane, runs it lane by lane.
@@ -384,15 +410,15 @@ impl ConstitutiveModel for VonMises {
     fn update<R: Real>(
         &self,
         strain: &[R; 4],
-        states: &mut [PlasticState],
-        first: usize,
-        stride: usize,
+        batch: &mut PlasticBatch,
+        at: usize,
         active: R::Mask,
     ) -> Response<R> {
         match self.flow.linear() {
-            Some(linear) => self.radial_return(&linear, strain, states, (first, stride, active)),
-            None => each_lane(strain, states, first, stride, active, |e, s| {
-                self.radial_return(&self.flow, e, std::slice::from_mut(s), (0, 1, true))
+            Some(linear) => self.radial_return(&linear, strain, batch, (at, active)),
+            // Lane `l` of the batch as the scalar path's element `l`.
+            None => each_lane(strain, at, active, |e, element| {
+                self.radial_return(&self.flow, e, batch, (element, true))
             }),
         }
     }
@@ -414,10 +440,10 @@ impl ConstitutiveModel for VonMises {
     }
 
     /// The plastic strain only moves with the equivalent plastic strain (`dk > 0`), so a
-    /// point with `eqps == 0` still has zero plastic strain.
+    /// point with `eqps == 0` (it is never negative) still has zero plastic strain.
     #[inline(always)]
-    fn is_virgin(&self, state: &PlasticState) -> bool {
-        state.eqps == 0.0
+    fn virgin<R: Real>(&self, batch: &PlasticBatch, at: usize) -> R::Mask {
+        R::not(R::of_batch(&batch.eqps, at).gt(R::splat(0.0)))
     }
 }
 
@@ -438,9 +464,13 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
-    /// One point's update.
+    /// One point's update (lane 0 of a batch).
     fn update(m: &VonMises, strain: &Strain, state: &mut PlasticState) -> PointResponse {
-        m.update(strain, std::slice::from_mut(state), 0, 1, true)
+        let mut batch = PlasticBatch::default();
+        VonMises::set_state(&mut batch, 0, *state);
+        let r = m.update(strain, &mut batch, 0, true);
+        *state = VonMises::state_of(&batch, 0);
+        r
     }
 
     fn steel(hardening: Hardening) -> VonMises {

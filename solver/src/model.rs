@@ -149,7 +149,7 @@ fn with_material<F: Formulation, U: UseModel>(
         // point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not for one point, whose
         // never-yielding plastic point, 21.7 ns, costs about the product's 22.6 ns).
         return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
-            model.with_elastic_screen(&mesh.mesh)
+            model.with_elastic_screen()
         } else {
             model
         }));
@@ -166,7 +166,7 @@ fn with_material<F: Formulation, U: UseModel>(
     let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
     let model = PlateModel::new(formulation, elastic, mesh, m.density).with_kernel_path(path);
     Ok(user.use_model(if stiffness_matrix {
-        model.with_linear_kernel(&mesh.mesh, &elastic)
+        model.with_linear_kernel(&elastic)
     } else {
         model
     }))

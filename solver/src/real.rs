@@ -8,10 +8,20 @@
 //! `2.0 * x` bit for bit: IEEE `+` and `*` are commutative), a constant on the left of `-` or
 //! `/` is splatted (`R::splat(1.0) - x`), and a product chain keeps its grouping
 //! (`1.5 * dk / q` is `(1.5 * dk) / q`, written `dk * 1.5 / q`, never `dk * (1.5 / q)`).
+//!
+//! Divisions by a constant are written as products with its reciprocal (`x * THIRD`, `x *
+//! (1.0 / (6.0 * mu))`), on both paths alike: a vector division costs ~16 cycles of a divider
+//! that does one at a time, a product one cycle of two multipliers, and the result differs
+//! from the quotient by at most one rounding (relative 1.1e-16). Only `dk * 1.5 / q` (one per
+//! yielding point) and the square root remain on the divider.
 
 use std::ops::{Add, AddAssign, Div, Mul, Sub};
 
 use crate::simd::{Lanes, Mask, LANES};
+
+/// 1/3, rounded once: the kernels multiply by it where the formula divides by 3 (see the
+/// module documentation).
+pub const THIRD: f64 = 1.0 / 3.0;
 
 /// A number of the kernels: one value per lane, [`Real::LANES`] lanes.
 pub trait Real:
@@ -43,6 +53,12 @@ pub trait Real:
     fn select(mask: Self::Mask, a: Self, b: Self) -> Self;
     /// Whether any lane of `mask` is set.
     fn any(mask: Self::Mask) -> bool;
+    /// Per lane: `a and b`.
+    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Per lane: `not m`.
+    fn not(m: Self::Mask) -> Self::Mask;
+    /// Writes `value` at `at` (see [`Real::of_batch`]) into `stored` where `mask` is set.
+    fn store(stored: &mut Lanes, at: usize, value: Self, mask: Self::Mask);
     /// Lane `l` of `mask`.
     fn on(mask: Self::Mask, l: usize) -> bool;
     /// Lane `l`'s value.
@@ -88,6 +104,20 @@ impl Real for f64 {
         mask
     }
     #[inline(always)]
+    fn and(a: bool, b: bool) -> bool {
+        a && b
+    }
+    #[inline(always)]
+    fn not(m: bool) -> bool {
+        !m
+    }
+    #[inline(always)]
+    fn store(stored: &mut Lanes, e: usize, value: f64, mask: bool) {
+        if mask {
+            stored.0[e % LANES] = value;
+        }
+    }
+    #[inline(always)]
     fn on(mask: bool, _: usize) -> bool {
         mask
     }
@@ -126,25 +156,40 @@ impl Real for Lanes {
     }
     #[inline(always)]
     fn gt(self, other: Lanes) -> Mask {
-        std::array::from_fn(|l| self.0[l] > other.0[l])
+        let mut m = 0u8;
+        for l in 0..LANES {
+            m |= u8::from(self.0[l] > other.0[l]) << l;
+        }
+        Mask(m)
     }
     #[inline(always)]
     fn select(mask: Mask, a: Lanes, b: Lanes) -> Lanes {
+        // A choice of values, not a conditional store: one blend instruction.
         let mut out = b;
-        for ((o, &m), &x) in out.0.iter_mut().zip(&mask).zip(&a.0) {
-            if m {
-                *o = x;
-            }
+        for l in 0..LANES {
+            out.0[l] = if mask.on(l) { a.0[l] } else { b.0[l] };
         }
         out
     }
     #[inline(always)]
     fn any(mask: Mask) -> bool {
-        mask.iter().any(|&m| m)
+        mask.0 != 0
+    }
+    #[inline(always)]
+    fn and(a: Mask, b: Mask) -> Mask {
+        Mask(a.0 & b.0)
+    }
+    #[inline(always)]
+    fn not(m: Mask) -> Mask {
+        Mask(!m.0)
+    }
+    #[inline(always)]
+    fn store(stored: &mut Lanes, _: usize, value: Lanes, mask: Mask) {
+        *stored = Lanes::select(mask, value, *stored);
     }
     #[inline(always)]
     fn on(mask: Mask, l: usize) -> bool {
-        mask[l]
+        mask.on(l)
     }
     #[inline(always)]
     fn lane(self, l: usize) -> f64 {

@@ -28,8 +28,24 @@ pub const LANES: usize = 8;
 #[repr(C, align(64))]
 pub struct Lanes(pub [f64; LANES]);
 
-/// One `bool` per lane.
-pub type Mask = [bool; LANES];
+/// One bit per lane (bit `l` for lane `l`): what a vector comparison leaves in a mask
+/// register, so comparisons, blends and masked stores need no conversion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mask(pub u8);
+
+impl Mask {
+    /// The first `n` lanes.
+    #[inline(always)]
+    pub fn first(n: usize) -> Mask {
+        Mask(((1u16 << n) - 1) as u8)
+    }
+
+    /// Lane `l`.
+    #[inline(always)]
+    pub fn on(self, l: usize) -> bool {
+        self.0 >> l & 1 != 0
+    }
+}
 
 impl Default for Lanes {
     #[inline(always)]

@@ -9,9 +9,8 @@
 //!   step is multiplied by [`GLOBAL_SAFETY`].
 
 use crate::contact::LineContactLaw;
-use crate::element::{element_max_eigenvalue, gather, scatter_add, Formulation};
+use crate::element::{element_max_eigenvalue, scatter_add, Formulation};
 use crate::material::Elastic;
-use crate::mesh::Mesh;
 use crate::stiffness::LinearKernel;
 
 pub use crate::scene::Estimate;
@@ -73,11 +72,10 @@ pub fn contact_stiffness_bound(law: &LineContactLaw, energy: f64) -> f64 {
 pub fn global_estimate<F: Formulation>(
     formulation: &F,
     elastic: &Elastic,
-    mesh: &Mesh,
     inverse_mass: &[f64],
     spring: Option<Spring>,
 ) -> f64 {
-    let kernel = LinearKernel::new(formulation, elastic, mesh);
+    let kernel = LinearKernel::new(formulation, elastic);
     let n = inverse_mass.len();
     let scale: Vec<f64> = inverse_mass.iter().map(|m| m.sqrt()).collect();
     // A deterministic start with weight in every mode (xorshift), zero on fixed dofs.
@@ -107,7 +105,7 @@ pub fn global_estimate<F: Formulation>(
         f.fill(0.0);
         for e in 0..formulation.n_elements() {
             let nodes = formulation.nodes(e);
-            let (fe, _) = kernel.element_of(formulation, e, &gather(nodes, &z));
+            let (fe, _) = kernel.element(formulation, e, &z);
             scatter_add(nodes, &fe, &mut f);
         }
         if let Some(s) = spring {
@@ -152,7 +150,7 @@ mod tests {
             let inverse_mass = model.inverse_mass;
             // Dense operator, column by column.
             let n = inverse_mass.len();
-            let kernel = LinearKernel::new(&f, &elastic, &mesh.mesh);
+            let kernel = LinearKernel::new(&f, &elastic);
             let a = nalgebra::DMatrix::<f64>::from_fn(n, n, |i, j| {
                 let mut unit = vec![0.0; n];
                 unit[j] = 1.0;
@@ -165,7 +163,7 @@ mod tests {
             });
             let a = 0.5 * (&a + a.transpose());
             let exact = 2.0 / a.symmetric_eigenvalues().max().sqrt();
-            let global = global_estimate(&f, &elastic, &mesh.mesh, &inverse_mass, None);
+            let global = global_estimate(&f, &elastic, &inverse_mass, None);
             let bound = element_bound(&f, &elastic, density);
             assert!(bound < exact, "element bound {bound:e} vs exact {exact:e}");
             // The estimate carries the safety factor and converged to 1e-3 of the step.
@@ -179,8 +177,7 @@ mod tests {
                 dof: 2 * mesh.top + 1,
                 stiffness: 1e12,
             };
-            let with_spring =
-                global_estimate(&f, &elastic, &mesh.mesh, &inverse_mass, Some(spring));
+            let with_spring = global_estimate(&f, &elastic, &inverse_mass, Some(spring));
             assert!(with_spring < 0.9 * global, "{with_spring:e} vs {global:e}");
         }
     }

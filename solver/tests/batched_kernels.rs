@@ -56,7 +56,12 @@ fn trace_of<F: Formulation, M: ConstitutiveModel>(
     }
     // Debug prints each f64 in its shortest round-trip form (and -0.0 as such): equal
     // strings are equal bits.
-    out.extend(model.states.iter().map(|s| format!("{s:?}")));
+    let n = model.formulation.n_elements();
+    out.extend(
+        (0..n)
+            .flat_map(|e| (0..F::POINTS).map(move |p| (e, p)))
+            .map(|(e, p)| format!("{:?}", model.state(e, p))),
+    );
     out
 }
 

@@ -3,12 +3,15 @@
 //! element: the heap bytes the model holds (`PlateModel::heap_bytes`: the capacities of its
 //! arrays) per element.
 //!
-//! Bound: 400 bytes. Issue 12's target is 300, not met yet: the plastic states alone are
-//! 160 bytes per q4 element (4 points x 5 f64), the element-force buffer of the (parallel)
-//! assembly 64, masses, node lists and screen ~60; the geometry, shared between congruent
-//! elements, is ~70 for q4-sri (measured 2026-11-23: q4-sri 373, q4-full 362, q4-1pt 192).
-//! Unshared geometry (one copy per element, as before the sharing: ~1 KB per q4-sri element)
-//! or a second copy of it fails the bound.
+//! Bound: 400 bytes. Issue 12's target is 300, met for q4-1pt only at this mesh: the plastic
+//! states alone are 160 bytes per q4 element (4 points x 5 f64), masses, node lists and the
+//! parallel assembly's lists ~60; the geometry and the screen's stiffness matrices, stored
+//! once per distinct batch of 8 elements, are ~70 each for q4-sri here and fall per element
+//! on larger meshes (measured 2026-11-23 after the batch-major states and the per-chunk
+//! scatter: q4-sri 364, q4-full 353, q4-1pt 123; the peak RSS slope between 400 x 80 and
+//! 800 x 160 is 324 bytes per q4-sri plastic element). Unshared geometry (one copy per
+//! element, as before the sharing: ~1 KB per q4-sri element), a per-element force array
+//! beside it, or per-element matrices (512 bytes) fails the bound.
 
 use std::path::Path;
 

@@ -126,7 +126,7 @@ fn march<F: Formulation>(
 ) -> Result<Run, String> {
     let mut model = PlateModel::new(formulation, *elastic, mesh, ms.density);
     if F::STIFFNESS_MATRIX_PAYS {
-        model = model.with_linear_kernel(&mesh.mesh, elastic);
+        model = model.with_linear_kernel(elastic);
     }
     let dt_critical = model.critical_time_step(ms.density);
     let end = 2.0 * std::f64::consts::PI / ms.omega;

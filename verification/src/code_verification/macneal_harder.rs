@@ -67,7 +67,7 @@ enum Path {
 /// Global stiffness (N/m) probed column by column from the chosen path.
 fn stiffness<F: Formulation>(f: &F, elastic: &Elastic, mesh: &Mesh, path: Path) -> DMatrix<f64> {
     let n = 2 * mesh.n_nodes();
-    let kernel = LinearKernel::new(f, elastic, mesh);
+    let kernel = LinearKernel::new(f, elastic);
     let mut k = DMatrix::zeros(n, n);
     for j in 0..n {
         let mut u = vec![0.0; n];

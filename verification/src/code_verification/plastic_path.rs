@@ -166,9 +166,7 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
         for e in 0..model.formulation.n_elements() {
             for p in 0..F::POINTS {
                 let s = model.point_stress(e, p, &u);
-                let k = model
-                    .material
-                    .equivalent_plastic_strain(&model.states[e * F::POINTS + p]);
+                let k = model.material.equivalent_plastic_strain(&model.state(e, p));
                 for c in 0..4 {
                     e_s = e_s.max((s[c] - exact[c]).abs() / sy);
                 }
@@ -176,7 +174,7 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
             }
         }
         let s0 = model.point_stress(0, 0, &u)[0];
-        let k0 = model.material.equivalent_plastic_strain(&model.states[0]);
+        let k0 = model.material.equivalent_plastic_strain(&model.state(0, 0));
         rows.push([t, path.strain(t), e_s, e_k, s0, k0]);
         if n == steps {
             break;
