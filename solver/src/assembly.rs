@@ -14,6 +14,7 @@ use std::ops::Range;
 use crate::element::{ElementEnergy, ElementVector};
 use crate::geometry::Vector;
 use crate::heap::vec_bytes;
+use crate::row_batches::{add_run, RowBatches};
 use crate::simd::{Lanes, LANES};
 use crate::workers::{part_range, threads_here, Team};
 
@@ -46,6 +47,7 @@ pub struct Assembly {
     scratch: Vec<ChunkForces>,
     chunk_energy: Vec<ElementEnergy>,
     parallel: Option<Parallel>,
+    rows: RowBatches,
 }
 
 /// What the assembly on several threads needs besides the buffers.
@@ -108,12 +110,15 @@ fn part_elements(n_chunks: usize, n_elements: usize, parts: usize, part: usize) 
 /// nodes not `shared`, the forces of the elements with a `slot` copied into `kept`.
 struct Scatter<'a> {
     f: &'a Disjoint<f64>,
+    /// The batches that lie in one row and have no shared node: added a batch at a time.
+    rows: &'a RowBatches,
     shared: Option<(&'a [bool], &'a [u32], &'a Disjoint<ElementVector>)>,
 }
 
 impl Scatter<'_> {
     /// Scatters the forces `forces` of the chunk's `elements` (`nodes(e)`: element `e`'s
-    /// nodes), in element order.
+    /// nodes), in element order: a row batch at once ([`add_run`]), the others element by
+    /// element.
     #[inline(always)]
     fn chunk(
         &self,
@@ -121,28 +126,44 @@ impl Scatter<'_> {
         forces: &ChunkForces,
         nodes: impl Fn(usize) -> [u32; 4],
     ) {
-        for (k, e) in elements.enumerate() {
-            let batch = &forces[k / LANES];
-            let fe: ElementVector = std::array::from_fn(|i| batch[i].0[k % LANES]);
-            let shared = match self.shared {
-                Some((shared, slot, kept)) if slot[e] != u32::MAX => {
-                    // SAFETY: an element's slot is written by the part that owns the element.
-                    unsafe { kept.slice(slot[e] as usize..slot[e] as usize + 1)[0] = fe };
-                    Some(shared)
+        for (k0, batch) in (0..elements.len()).step_by(LANES).zip(forces) {
+            let e0 = elements.start + k0;
+            if let Some(runs) = self.rows.runs(e0 / LANES) {
+                for (run, first) in runs.into_iter().enumerate() {
+                    // SAFETY: a row batch has no shared node: its nodes are its part's.
+                    let f = unsafe { self.f.slice(2 * first..2 * first + 2 * (LANES + 1)) };
+                    add_run(f, batch, run);
                 }
-                _ => None,
-            };
-            for (a, &n) in nodes(e).iter().enumerate() {
-                let n = n as usize;
-                if shared.is_some_and(|s| s[n]) {
-                    continue;
-                }
-                // SAFETY: a node not shared has all its elements in this part (or there is
-                // one part), so only this part writes it.
-                let f = unsafe { self.f.slice(2 * n..2 * n + 2) };
-                f[0] += fe[2 * a];
-                f[1] += fe[2 * a + 1];
+                continue;
             }
+            for l in 0..(elements.len() - k0).min(LANES) {
+                let fe: ElementVector = std::array::from_fn(|i| batch[i].0[l]);
+                self.element(e0 + l, &fe, nodes(e0 + l));
+            }
+        }
+    }
+
+    /// Scatters element `e`'s forces `fe` (N) to its `nodes`.
+    #[inline(always)]
+    fn element(&self, e: usize, fe: &ElementVector, nodes: [u32; 4]) {
+        let shared = match self.shared {
+            Some((shared, slot, kept)) if slot[e] != u32::MAX => {
+                // SAFETY: an element's slot is written by the part that owns the element.
+                unsafe { kept.slice(slot[e] as usize..slot[e] as usize + 1)[0] = *fe };
+                Some(shared)
+            }
+            _ => None,
+        };
+        for (a, &n) in nodes.iter().enumerate() {
+            let n = n as usize;
+            if shared.is_some_and(|s| s[n]) {
+                continue;
+            }
+            // SAFETY: a node not shared has all its elements in this part (or there is
+            // one part), so only this part writes it.
+            let f = unsafe { self.f.slice(2 * n..2 * n + 2) };
+            f[0] += fe[2 * a];
+            f[1] += fe[2 * a + 1];
         }
     }
 }
@@ -152,11 +173,17 @@ impl Assembly {
     /// team of that many threads (the caller's included) that assembles in parallel.
     pub fn new(connectivity: &[[u32; 4]], n_nodes: usize, threads: usize) -> Assembly {
         let n_elements = connectivity.len();
+        let parallel = (threads > 1).then(|| Parallel::new(connectivity, n_nodes, threads));
+        // A batch with an element on a shared node goes element by element.
+        let rows = RowBatches::new(connectivity, |e| {
+            parallel.as_ref().is_some_and(|p| p.slot[e] != u32::MAX)
+        });
         Assembly {
             n_elements,
             scratch: vec![[[Lanes::splat(0.0); 8]; BATCHES]; threads.max(1)],
             chunk_energy: vec![ElementEnergy::default(); n_elements.div_ceil(CHUNK)],
-            parallel: (threads > 1).then(|| Parallel::new(connectivity, n_nodes, threads)),
+            parallel,
+            rows,
         }
     }
 
@@ -180,7 +207,7 @@ impl Assembly {
                 + vec_bytes(&p.kept)
                 + p.shared_nodes.heap_bytes()
         });
-        vec_bytes(&self.scratch) + vec_bytes(&self.chunk_energy) + parallel
+        vec_bytes(&self.scratch) + vec_bytes(&self.chunk_energy) + self.rows.heap_bytes() + parallel
     }
 
     /// Threads the assembly runs on.
@@ -233,6 +260,7 @@ impl Assembly {
                 let kept = Disjoint::new(&mut parallel.kept);
                 let scatter = Scatter {
                     f: &out,
+                    rows: &self.rows,
                     shared: Some((&parallel.shared, &parallel.slot, &kept)),
                 };
                 let team = &parallel.team;
@@ -245,6 +273,7 @@ impl Assembly {
                 1,
                 &Scatter {
                     f: &out,
+                    rows: &self.rows,
                     shared: None,
                 },
             ),
@@ -382,7 +411,11 @@ mod tests {
     /// A 13 x 11 structured mesh (143 elements, 168 nodes), counter-clockwise nodes, and one
     /// more node on no element (its force must come out 0 on every path).
     fn grid() -> (Vec<[u32; 4]>, usize) {
-        let (nx, ny) = (13u32, 11u32);
+        grid_of(13, 11)
+    }
+
+    /// An `nx` x `ny` structured mesh and one more node on no element.
+    fn grid_of(nx: u32, ny: u32) -> (Vec<[u32; 4]>, usize) {
         let id = |i: u32, j: u32| j * (nx + 1) + i;
         let conn = (0..ny)
             .flat_map(|j| {
@@ -407,7 +440,13 @@ mod tests {
     }
 
     fn assembled(threads: usize) -> (Vec<u64>, Vec<u64>, [u64; 3]) {
-        let (conn, n_nodes) = grid();
+        assembled_on(grid(), threads)
+    }
+
+    fn assembled_on(
+        (conn, n_nodes): (Vec<[u32; 4]>, usize),
+        threads: usize,
+    ) -> (Vec<u64>, Vec<u64>, [u64; 3]) {
         let mut assembly = Assembly::new(&conn, n_nodes, threads);
         assert_eq!(assembly.threads(), threads);
         let mut states = vec![0u64; 4 * conn.len().div_ceil(LANES)];
@@ -424,6 +463,31 @@ mod tests {
         }
         let bits = [energy.strain, energy.plastic_work, energy.hourglass].map(f64::to_bits);
         (f.iter().map(|x| x.to_bits()).collect(), states, bits)
+    }
+
+    #[test]
+    fn the_assembly_adds_as_the_element_scatter_in_element_order() {
+        // Rows of 16 (every batch in a row: the row scatter) and of 13 (batches across rows:
+        // element by element), on 1 to 3 threads (the shared nodes' batches go element by
+        // element).
+        for (nx, ny) in [(16, 9), (13, 11), (24, 3)] {
+            let (conn, n_nodes) = grid_of(nx, ny);
+            let mut reference = vec![0.0; 2 * n_nodes];
+            for (e, &nodes) in conn.iter().enumerate() {
+                scatter_add(nodes, &kernel(e, &mut [0; 4]).0, &mut reference);
+            }
+            let reference: Vec<u64> = reference.iter().map(|x| x.to_bits()).collect();
+            let rows = RowBatches::new(&conn, |_| false);
+            let row_batches = (0..conn.len() / LANES)
+                .filter(|&b| rows.runs(b).is_some())
+                .count();
+            let every = row_batches == conn.len() / LANES;
+            assert!(row_batches > 0 && every == (nx % 8 == 0), "{nx} x {ny}");
+            for threads in 1..=3 {
+                let (f, _, _) = assembled_on((conn.clone(), n_nodes), threads);
+                assert_eq!(f, reference, "{nx} x {ny} on {threads} threads");
+            }
+        }
     }
 
     #[test]

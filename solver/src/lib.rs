@@ -32,6 +32,7 @@ pub mod output;
 pub mod overrides;
 pub mod progress;
 pub mod real;
+pub mod row_batches;
 pub mod scene;
 pub mod simd;
 pub mod stable_step;

@@ -1,0 +1,149 @@
+//! The scatter of a batch of [`LANES`] elements that lie side by side in one row of a
+//! structured mesh: element `l` of the batch has the nodes `[b + l, b + l + 1, t + l + 1,
+//! t + l]` (bottom nodes from `b`, top nodes from `t`), so the batch touches two runs of
+//! `LANES + 1` consecutive nodes, and node `b + l` receives, in element order, local node 1
+//! of element `l - 1` and then local node 0 of element `l` (the top run: local nodes 2 and
+//! 3). Added as two vector sums per run, in that order, these are the additions of the
+//! element-by-element scatter `f[n] += f_e[a]` in the same order: the same bits, without a
+//! load, an add and a store per node and element, each waiting on the previous element's
+//! store to the node they share.
+
+use crate::geometry::Vector;
+use crate::heap::vec_bytes;
+use crate::simd::{Lanes, LANES};
+
+/// Doubles in a run of `LANES + 1` nodes (x and y).
+const RUN: usize = 2 * (LANES + 1);
+
+/// Per batch of [`LANES`] elements: the first bottom and top node of its runs when it lies
+/// in one row (see the module documentation), else `NONE`.
+pub struct RowBatches {
+    first: Vec<[u32; 2]>,
+}
+
+const NONE: [u32; 2] = [u32::MAX; 2];
+
+impl RowBatches {
+    /// The row batches of `connectivity` (nodes counter-clockwise), leaving out the batches
+    /// with an element for which `excluded(e)` holds.
+    pub fn new(connectivity: &[[u32; 4]], excluded: impl Fn(usize) -> bool) -> RowBatches {
+        let first = connectivity
+            .chunks(LANES)
+            .enumerate()
+            .map(|(k, batch)| {
+                let (b, t) = (batch[0][0], batch[0][3]);
+                let row = batch.len() == LANES
+                    && b.abs_diff(t) as usize >= LANES + 1
+                    && batch.iter().enumerate().all(|(l, nodes)| {
+                        let l = l as u32;
+                        *nodes == [b + l, b + l + 1, t + l + 1, t + l]
+                            && !excluded(k * LANES + l as usize)
+                    });
+                if row {
+                    [b, t]
+                } else {
+                    NONE
+                }
+            })
+            .collect();
+        RowBatches { first }
+    }
+
+    /// The first bottom and top node of batch `batch`'s runs, if it lies in one row.
+    #[inline(always)]
+    pub fn runs(&self, batch: usize) -> Option<[usize; 2]> {
+        let [b, t] = self.first[batch];
+        (b != u32::MAX).then_some([b as usize, t as usize])
+    }
+
+    pub fn heap_bytes(&self) -> usize {
+        vec_bytes(&self.first)
+    }
+}
+
+/// Adds a row batch's element `forces` (N; entry `2 a + c`: component `c` of local node
+/// `a`, in lanes) to the nodal forces of its bottom `run` (`[0]`) or top run (`[1]`): the
+/// `RUN` doubles (x, y per node) from the run's first node.
+#[inline(always)]
+pub fn add_run(f: &mut [f64], forces: &Vector<Lanes>, run: usize) {
+    let f: &mut [f64; RUN] = f.try_into().expect("a run is LANES + 1 nodes");
+    // Bottom: node l gets local node 1 of element l - 1 ("left"), then local node 0 of
+    // element l ("right"); top: local nodes 2 and 3.
+    let (left, right) = if run == 0 { (1, 0) } else { (2, 3) };
+    let (mut from_left, mut from_right) = ([0.0; RUN - 2], [0.0; RUN - 2]);
+    for l in 0..LANES {
+        for c in 0..2 {
+            from_left[2 * l + c] = forces[2 * left + c].0[l];
+            from_right[2 * l + c] = forces[2 * right + c].0[l];
+        }
+    }
+    // Nodes 1 ..= LANES, then nodes 0 .. LANES: on a node both touch, left before right.
+    for (x, add) in f[2..].iter_mut().zip(&from_left) {
+        *x += add;
+    }
+    for (x, add) in f[..RUN - 2].iter_mut().zip(&from_right) {
+        *x += add;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Reference: the element-by-element scatter in element order; bit for bit.
+    use super::*;
+    use crate::element::scatter_add;
+
+    #[test]
+    fn a_row_batch_adds_as_the_element_scatter() {
+        // One row of 8 elements over nodes 0..=8 (bottom) and 20..=28 (top) of 30.
+        let conn: Vec<[u32; 4]> = (0..8).map(|l| [l, l + 1, 21 + l, 20 + l]).collect();
+        let rows = RowBatches::new(&conn, |_| false);
+        assert_eq!(rows.runs(0), Some([0, 20]));
+        let mut forces = [Lanes::splat(0.0); 8];
+        for (i, lanes) in forces.iter_mut().enumerate() {
+            for l in 0..LANES {
+                // Magnitudes far apart, so that the order of the additions shows in the bits.
+                lanes.0[l] = ((8 * i + l) as f64 * 0.77).sin() * 10f64.powi((i + l) as i32 % 7);
+            }
+        }
+        let start: Vec<f64> = (0..60).map(|i| (i as f64 * 1.3).cos() * 1e-3).collect();
+        let mut reference = start.clone();
+        for (l, nodes) in conn.iter().enumerate() {
+            let fe = std::array::from_fn(|i| forces[i].0[l]);
+            scatter_add(*nodes, &fe, &mut reference);
+        }
+        let mut f = start;
+        add_run(&mut f[0..RUN], &forces, 0);
+        add_run(&mut f[40..40 + RUN], &forces, 1);
+        assert_eq!(f.map_bits(), reference.map_bits());
+    }
+
+    #[test]
+    fn batches_off_a_row_are_not_row_batches() {
+        // A 5-wide mesh: its batches wrap around the row end.
+        let conn: Vec<[u32; 4]> = (0..16)
+            .map(|e| {
+                let (i, j) = (e % 5, e / 5);
+                let n = j * 6 + i;
+                [n, n + 1, n + 7, n + 6]
+            })
+            .collect();
+        let rows = RowBatches::new(&conn, |_| false);
+        assert_eq!((rows.runs(0), rows.runs(1)), (None, None));
+        // An excluded element, a partial batch.
+        let row: Vec<[u32; 4]> = (0..12).map(|l| [l, l + 1, 31 + l, 30 + l]).collect();
+        let rows = RowBatches::new(&row, |e| e == 3);
+        assert_eq!((rows.runs(0), rows.runs(1)), (None, None));
+        let rows = RowBatches::new(&row, |_| false);
+        assert_eq!((rows.runs(0), rows.runs(1)), (Some([0, 30]), None));
+    }
+
+    trait Bits {
+        fn map_bits(&self) -> Vec<u64>;
+    }
+
+    impl Bits for Vec<f64> {
+        fn map_bits(&self) -> Vec<u64> {
+            self.iter().map(|x| x.to_bits()).collect()
+        }
+    }
+}
