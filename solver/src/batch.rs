@@ -58,6 +58,11 @@ fn gather_lanes<F: Formulation>(
             dof[a][l] = 2 * n as usize;
         }
     }
+    if lanes == LANES {
+        if let Some(ue) = row_lanes(&dof, u) {
+            return ue;
+        }
+    }
     // Every index is checked once here, so the loads below need no check of their own and
     // vectorise.
     let highest = dof.iter().flatten().copied().max().unwrap_or(0);
@@ -73,6 +78,41 @@ fn gather_lanes<F: Formulation>(
         }
     }
     ue
+}
+
+/// [`gather_lanes`] of a batch that lies in one row of a structured mesh (element `l`'s
+/// dofs `dof[a][l]` are `[b + 2l, b + 2l + 2, t + 2l + 2, t + 2l]`, its x components; see
+/// [`crate::row_batches`]): each of its two runs of nodes is one contiguous slice of `u`,
+/// loaded whole and split into lanes by shuffles instead of eight gathers. `None` for
+/// another batch.
+#[inline(always)]
+fn row_lanes(dof: &[[usize; LANES]; 4], u: &[f64]) -> Option<Vector<Lanes>> {
+    let (b, t) = (dof[0][0], dof[3][0]);
+    let mut row = true;
+    for l in 0..LANES {
+        row &= dof[0][l] == b + 2 * l && dof[1][l] == b + 2 * l + 2;
+        row &= dof[3][l] == t + 2 * l && dof[2][l] == t + 2 * l + 2;
+    }
+    const RUN: usize = 2 * (LANES + 1);
+    let bottom: &[f64; RUN] = u.get(b..b + RUN)?.try_into().ok()?;
+    let top: &[f64; RUN] = u.get(t..t + RUN)?.try_into().ok()?;
+    // Local node a, component c: from the bottom run at node l (a = 0) or l + 1 (a = 1),
+    // from the top run at node l + 1 (a = 2) or l (a = 3).
+    let from = |run: &[f64; RUN], shift: usize, c: usize| {
+        Lanes(std::array::from_fn(|l| run[2 * (l + shift) + c]))
+    };
+    row.then(|| {
+        [
+            from(bottom, 0, 0),
+            from(bottom, 0, 1),
+            from(bottom, 1, 0),
+            from(bottom, 1, 1),
+            from(top, 1, 0),
+            from(top, 1, 1),
+            from(top, 0, 0),
+            from(top, 0, 1),
+        ]
+    })
 }
 
 /// Adds the energies of the first `lanes` lanes to `total`, in lane (element) order.

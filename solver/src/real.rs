@@ -156,32 +156,33 @@ impl Real for Lanes {
     }
     #[inline(always)]
     fn gt(self, other: Lanes) -> Mask {
-        let mut m = 0u8;
-        for l in 0..LANES {
-            m |= u8::from(self.0[l] > other.0[l]) << l;
-        }
-        Mask(m)
+        Mask(std::array::from_fn(|l| {
+            if self.0[l] > other.0[l] {
+                !0
+            } else {
+                0
+            }
+        }))
     }
     #[inline(always)]
     fn select(mask: Mask, a: Lanes, b: Lanes) -> Lanes {
-        // A choice of values, not a conditional store: one blend instruction.
-        let mut out = b;
-        for l in 0..LANES {
-            out.0[l] = if mask.on(l) { a.0[l] } else { b.0[l] };
-        }
-        out
+        // Bitwise, so that it compiles to one blend.
+        Lanes(std::array::from_fn(|l| {
+            let (a, b, m) = (a.0[l].to_bits(), b.0[l].to_bits(), mask.0[l]);
+            f64::from_bits((a & m) | (b & !m))
+        }))
     }
     #[inline(always)]
     fn any(mask: Mask) -> bool {
-        mask.0 != 0
+        mask.0.iter().fold(0, |x, y| x | y) != 0
     }
     #[inline(always)]
     fn and(a: Mask, b: Mask) -> Mask {
-        Mask(a.0 & b.0)
+        Mask(std::array::from_fn(|l| a.0[l] & b.0[l]))
     }
     #[inline(always)]
     fn not(m: Mask) -> Mask {
-        Mask(!m.0)
+        Mask(m.0.map(|x| !x))
     }
     #[inline(always)]
     fn store(stored: &mut Lanes, _: usize, value: Lanes, mask: Mask) {

@@ -33,7 +33,7 @@ impl RowBatches {
             .map(|(k, batch)| {
                 let (b, t) = (batch[0][0], batch[0][3]);
                 let row = batch.len() == LANES
-                    && b.abs_diff(t) as usize >= LANES + 1
+                    && b.abs_diff(t) as usize > LANES
                     && batch.iter().enumerate().all(|(l, nodes)| {
                         let l = l as u32;
                         *nodes == [b + l, b + l + 1, t + l + 1, t + l]
