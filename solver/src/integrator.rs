@@ -21,7 +21,7 @@ use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::PlateMesh;
 use crate::scene::{DtChoice, End, Impactor, Scene};
-use crate::simd::{dispatch, KernelPath, LANES};
+use crate::simd::{dispatch, Kernel, KernelPath, Lanes, LANES};
 use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
@@ -557,8 +557,14 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             None => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
         }
         let half = if n == 0 { 0.5 } else { 1.0 };
-        let model = &*self.model;
-        let twice_kinetic = update_velocities(&mut self.v, &self.f_int, model, half * dt);
+        let update = VelocityUpdate {
+            v: &mut self.v,
+            f_int: &self.f_int,
+            inverse_mass: &self.model.inverse_mass,
+            mass: &self.model.mass,
+            h: half * dt,
+        };
+        let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
         Energies {
             plate_kinetic: if n > 0 { 0.5 * s * twice_kinetic } else { 0.0 },
             impactor_kinetic: self
@@ -661,9 +667,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             .prescribed
             .as_ref()
             .map_or(0.0, |l| l.projection(&self.u));
-        for (u, v) in self.u.iter_mut().zip(&self.v) {
-            *u += dt * v;
-        }
+        let displace = Displace {
+            u: &mut self.u,
+            v: &self.v,
+            dt,
+        };
+        dispatch(self.model.kernel_path.isa(), displace);
         let next_force = match &mut self.impact {
             Some(impact) => {
                 let delta_c = -self.u[2 * self.datum + 1];
@@ -705,44 +714,87 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
     }
 }
 
-/// Dofs whose kinetic energies are summed apart (dof `d` into sum `d % KINETIC_SUMS`), the
-/// sums then added in order: a fixed order (the same bits on every run and thread count) that
-/// lets the loop run in vectors instead of waiting on one chain of additions.
-const KINETIC_SUMS: usize = 8;
-
-/// Steps 2-3: `v += h a` with `a = -f_int / m` per dof (`h`: the velocity step, s), and
-/// returns `sum m v_n^2` (kg m^2/s^2) with `v_n` the mean of the old and new velocity
-/// (summed as [`KINETIC_SUMS`] partial sums).
-fn update_velocities<F: Formulation, M: ConstitutiveModel>(
-    v: &mut [f64],
-    f_int: &[f64],
-    model: &PlateModel<F, M>,
+/// Steps 2-3: `v += h a` with `a = -f_int / m` per dof (`h`: the velocity step, s); `run`
+/// returns `sum m v_n^2` (kg m^2/s^2) with `v_n` the mean of the old and new velocity, summed
+/// as [`LANES`] partial sums (dof `d` into sum `d % LANES`) then added in order: a fixed
+/// order (the same bits on every run and thread count) that lets the loop run in vectors
+/// instead of waiting on one chain of additions. A [`Kernel`], compiled for the element kernels'
+/// instruction set (the same bits on any: no operation here is fused or reordered).
+struct VelocityUpdate<'a> {
+    v: &'a mut [f64],
+    f_int: &'a [f64],
+    /// Per dof, 1/kg.
+    inverse_mass: &'a [f64],
+    /// Per node, kg.
+    mass: &'a [f64],
     h: f64,
-) -> f64 {
-    let mut sums = [0.0; KINETIC_SUMS];
-    let (inverse_mass, mass) = (&model.inverse_mass[..v.len()], &model.mass[..v.len() / 2]);
-    // Dof `d` of a group: `v_n^2 m`, `m` its node's.
-    let dof = |v: &mut f64, f: f64, inverse_mass: f64, m: f64| {
-        let v_new = *v + h * (-f * inverse_mass);
-        let v_n = 0.5 * (*v + v_new);
-        *v = v_new;
-        m * v_n * v_n
-    };
-    let groups = v
-        .chunks_exact_mut(KINETIC_SUMS)
-        .zip(f_int.chunks_exact(KINETIC_SUMS))
-        .zip(inverse_mass.chunks_exact(KINETIC_SUMS))
-        .zip(mass.chunks_exact(KINETIC_SUMS / 2));
-    for (((v, f), im), m) in groups {
-        for i in 0..KINETIC_SUMS {
-            sums[i] += dof(&mut v[i], f[i], im[i], m[i / 2]);
+}
+
+impl Kernel for VelocityUpdate<'_> {
+    type Output = f64;
+    #[inline(always)]
+    fn run(self) -> f64 {
+        let (v, h) = (self.v, self.h);
+        let (f_int, inverse_mass) = (&self.f_int[..v.len()], &self.inverse_mass[..v.len()]);
+        let mass = &self.mass[..v.len() / 2];
+        let group =
+            |v: &mut [f64], f: &[f64], im: &[f64], m: &[f64]| velocity_group(v, f, im, m, h);
+        let mut sums = Lanes::splat(0.0);
+        let groups = v
+            .chunks_exact_mut(LANES)
+            .zip(f_int.chunks_exact(LANES))
+            .zip(inverse_mass.chunks_exact(LANES))
+            .zip(mass.chunks_exact(LANES / 2));
+        for (((v, f), im), m) in groups {
+            sums += group(v, f, im, m);
+        }
+        // The last dofs (fewer than LANES), padded with zeros that add 0 to their sums.
+        let whole = v.len() - v.len() % LANES;
+        let mut tail = [[0.0; LANES]; 3];
+        let mut tail_mass = [0.0; LANES / 2];
+        for d in whole..v.len() {
+            let i = d - whole;
+            (tail[0][i], tail[1][i], tail[2][i]) = (v[d], f_int[d], inverse_mass[d]);
+            tail_mass[i / 2] = mass[d / 2];
+        }
+        let [mut tv, tf, tim] = tail;
+        sums += group(&mut tv, &tf, &tim, &tail_mass);
+        let n = v.len() - whole;
+        v[whole..].copy_from_slice(&tv[..n]);
+        sums.0.iter().sum()
+    }
+}
+
+/// [`VelocityUpdate`] of a group of [`LANES`] dofs `v` (m/s) with their forces `f` (N) and
+/// inverse masses `inverse_mass` (1/kg) and their nodes' masses `m` (kg), in lanes; returns
+/// `v_n^2 m` per dof. (A function, not a closure: a closure may be left out of line,
+/// compiled for the baseline.)
+#[inline(always)]
+fn velocity_group(v: &mut [f64], f: &[f64], inverse_mass: &[f64], m: &[f64], h: f64) -> Lanes {
+    let lanes = |x: &[f64]| Lanes(std::array::from_fn(|i| x[i]));
+    let (old, f, im) = (lanes(v), lanes(f), lanes(inverse_mass));
+    let m = Lanes(std::array::from_fn(|i| m[i / 2]));
+    let new = old + h * (f.map(|x| -x) * im);
+    let mean = 0.5 * (old + new);
+    v.copy_from_slice(&new.0);
+    m * mean * mean
+}
+
+/// `u += dt v` per dof (m; `dt` s, `v` m/s), compiled as [`VelocityUpdate`].
+struct Displace<'a> {
+    u: &'a mut [f64],
+    v: &'a [f64],
+    dt: f64,
+}
+
+impl Kernel for Displace<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        for (u, v) in self.u.iter_mut().zip(self.v) {
+            *u += self.dt * v;
         }
     }
-    let whole = v.len() - v.len() % KINETIC_SUMS;
-    for d in whole..v.len() {
-        sums[d - whole] += dof(&mut v[d], f_int[d], inverse_mass[d], mass[d / 2]);
-    }
-    sums.iter().sum()
 }
 
 /// The stable step of `scene.time.dt.estimate`, s. The global estimate includes the contact

@@ -202,6 +202,14 @@ impl KernelPath {
         KernelPath::Batched(Isa::detect())
     }
 
+    /// The instruction set the path's kernels are compiled for (the scalar path: baseline).
+    pub fn isa(self) -> Isa {
+        match self {
+            KernelPath::Scalar => Isa::Baseline,
+            KernelPath::Batched(isa) => isa,
+        }
+    }
+
     pub fn name(self) -> String {
         match self {
             KernelPath::Scalar => "scalar".into(),
