@@ -107,8 +107,10 @@ fn part_elements(n_chunks: usize, n_elements: usize, parts: usize, part: usize) 
 }
 
 /// Where a chunk's forces go: every node straight into `f`, or, on several threads, only the
-/// nodes not `shared`, the forces of the elements with a `slot` copied into `kept`.
-struct Scatter<'a> {
+/// nodes not `shared`, the forces of the elements with a `slot` copied into `kept`. The chunk
+/// kernel calls [`Scatter::chunk`] itself, so that the scatter is compiled with the kernel (for
+/// its instruction set: the row batches' vector sums in AVX-512 where the kernel is).
+pub struct Scatter<'a> {
     f: &'a Disjoint<f64>,
     /// The batches that lie in one row and have no shared node: added a batch at a time.
     rows: &'a RowBatches,
@@ -120,10 +122,10 @@ impl Scatter<'_> {
     /// nodes), in element order: a row batch at once ([`add_run`]), the others element by
     /// element.
     #[inline(always)]
-    fn chunk(
+    pub fn chunk(
         &self,
         elements: Range<usize>,
-        forces: &ChunkForces,
+        forces: &[BatchForces],
         nodes: impl Fn(usize) -> [u32; 4],
     ) {
         for (k0, batch) in (0..elements.len()).step_by(LANES).zip(forces) {
@@ -216,27 +218,25 @@ impl Assembly {
     }
 
     /// Computes every element's forces with `chunk_kernel(elements of the chunk, their
-    /// batches of forces, their states)` (states: `points` per batch of [`LANES`] elements;
-    /// the kernel returns the chunk's energies summed in element order), scatters them into
-    /// `f` (overwritten) and returns the summed energies.
+    /// batches of forces, their states, scatter)` (states: `points` per batch of [`LANES`]
+    /// elements; the kernel scatters the forces with `scatter.chunk` and returns the chunk's
+    /// energies summed in element order) into `f` (overwritten) and returns the summed
+    /// energies.
     pub fn assemble<S: Send>(
         &mut self,
         states: &mut [S],
         points: usize,
-        nodes: impl Fn(usize) -> [u32; 4] + Sync,
-        chunk_kernel: impl Fn(Range<usize>, &mut [BatchForces], &mut [S]) -> ElementEnergy + Sync,
+        chunk_kernel: impl Fn(Range<usize>, &mut [BatchForces], &mut [S], &Scatter) -> ElementEnergy
+            + Sync,
         f: &mut [f64],
     ) -> ElementEnergy {
         let n_elements = self.n_elements;
         let per_chunk = BATCHES * points.max(1);
         // The chunk `c`'s elements, their batches in `forces` and their states.
-        let chunk = |c: usize, forces: &mut ChunkForces, states: &mut [S]| {
+        let chunk = |c: usize, forces: &mut ChunkForces, states: &mut [S], scatter: &Scatter| {
             let elements = c * CHUNK..((c + 1) * CHUNK).min(n_elements);
             let batches = elements.len().div_ceil(LANES);
-            (
-                chunk_kernel(elements.clone(), &mut forces[..batches], states),
-                elements,
-            )
+            chunk_kernel(elements, &mut forces[..batches], states, scatter)
         };
         f.fill(0.0);
         let out = Disjoint::new(f);
@@ -250,9 +250,8 @@ impl Assembly {
             let forces = unsafe { &mut scratch.slice(part..part + 1)[0] };
             for c in part_range(n_chunks, parts, part) {
                 let s = (c * per_chunk).min(states.len)..((c + 1) * per_chunk).min(states.len);
-                let (energy, elements) = chunk(c, forces, unsafe { states.slice(s) });
+                let energy = chunk(c, forces, unsafe { states.slice(s) }, scatter);
                 unsafe { energies.slice(c..c + 1)[0] = energy };
-                scatter.chunk(elements, forces, &nodes);
             }
         };
         match &mut self.parallel {
@@ -456,8 +455,11 @@ mod tests {
             energy = assembly.assemble(
                 &mut states,
                 4,
-                |e| conn[e],
-                |elements, forces, states| each_element(elements, forces, states, 4, kernel),
+                |elements, forces, states, scatter| {
+                    let energy = each_element(elements.clone(), forces, states, 4, kernel);
+                    scatter.chunk(elements, forces, |e| conn[e]);
+                    energy
+                },
                 &mut f,
             );
         }
