@@ -418,9 +418,15 @@ impl Formulation for SelectiveQ4 {
     #[inline(always)]
     fn finish_forces<R: Real>(&self, at: usize, mean_total: R, f: &mut Vector<R>) {
         let c = self.centroid.batch::<R>(at);
-        for a in 0..4 {
-            f[2 * a] += mean_total * c.dndx::<R>(a, at);
-            f[2 * a + 1] += mean_total * c.dndy::<R>(a, at);
+        // The products first, then the sums: written as one loop, LLVM vectorised it across
+        // the nodes (4-wide, with a transpose and 16 gathers and scatters per batch: ~20 %
+        // of the all-yielding kernel's samples) instead of across the lanes.
+        let add: Vector<R> = std::array::from_fn(|i| {
+            let d = if i % 2 == 0 { c.dndx::<R>(i / 2, at) } else { c.dndy::<R>(i / 2, at) };
+            mean_total * d
+        });
+        for (x, add) in f.iter_mut().zip(add) {
+            *x += add;
         }
     }
     fn volume(&self, e: usize) -> f64 {
