@@ -15,7 +15,7 @@ use crate::element::{ElementEnergy, ElementVector};
 use crate::geometry::Vector;
 use crate::heap::vec_bytes;
 use crate::row_batches::{add_run, RowBatches};
-use crate::simd::{Lanes, LANES};
+use crate::simd::{Kernel, Lanes, LANES};
 use crate::workers::{part_range, threads_here, Team};
 
 /// Elements per task.
@@ -115,6 +115,24 @@ pub struct Scatter<'a> {
     /// The batches that lie in one row and have no shared node: added a batch at a time.
     rows: &'a RowBatches,
     shared: Option<(&'a [bool], &'a [u32], &'a Disjoint<ElementVector>)>,
+}
+
+/// [`Scatter::chunk`] as a [`Kernel`], to run it compiled for an instruction set apart from
+/// the kernel that computed the forces (see the stress path in `PlateModel::internal_forces`).
+pub struct ScatterChunk<'a, N> {
+    pub scatter: &'a Scatter<'a>,
+    pub elements: Range<usize>,
+    pub forces: &'a [BatchForces],
+    /// Element `e`'s nodes.
+    pub nodes: N,
+}
+
+impl<N: Fn(usize) -> [u32; 4]> Kernel for ScatterChunk<'_, N> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.scatter.chunk(self.elements, self.forces, self.nodes);
+    }
 }
 
 impl Scatter<'_> {

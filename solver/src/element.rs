@@ -422,7 +422,11 @@ impl Formulation for SelectiveQ4 {
         // the nodes (4-wide, with a transpose and 16 gathers and scatters per batch: ~20 %
         // of the all-yielding kernel's samples) instead of across the lanes.
         let add: Vector<R> = std::array::from_fn(|i| {
-            let d = if i % 2 == 0 { c.dndx::<R>(i / 2, at) } else { c.dndy::<R>(i / 2, at) };
+            let d = if i % 2 == 0 {
+                c.dndx::<R>(i / 2, at)
+            } else {
+                c.dndy::<R>(i / 2, at)
+            };
             mean_total * d
         });
         for (x, add) in f.iter_mut().zip(add) {

@@ -4,7 +4,7 @@
 
 use std::result::Result as StdResult;
 
-use crate::assembly::{each_element, Assembly};
+use crate::assembly::{each_element, Assembly, ScatterChunk};
 use crate::batch;
 use crate::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
@@ -192,11 +192,20 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                         forces,
                         states,
                     };
-                    // Scattered outside the kernel: compiled into it (as the stiffness
-                    // product's is), the paper plastic run took 1.04 s instead of 0.72 s on
-                    // one thread (2026-11-25).
+                    // Scattered by a kernel of its own: compiled into the stress path's (as
+                    // the stiffness product's is), the paper plastic run took 1.04 s instead
+                    // of 0.72 s on one thread (2026-11-25).
                     let energy = dispatch(isa, chunk);
-                    scatter.chunk(elements, forces, nodes);
+                    let forces = &*forces;
+                    dispatch(
+                        isa,
+                        ScatterChunk {
+                            scatter,
+                            elements,
+                            forces,
+                            nodes,
+                        },
+                    );
                     energy
                 },
                 f,
