@@ -81,7 +81,8 @@ pub trait Formulation: Sync {
     /// Integration points that carry material state (4 or 1).
     const POINTS: usize;
     /// Whether an elastic run is faster with precomputed element stiffness matrices than
-    /// with the stress path (measured by `impact-bench throughput`: not for one point).
+    /// with the stress path (measured by `impact-bench throughput`: not for one point; see
+    /// [`crate::model::Kernel::Elastic`]).
     const STIFFNESS_MATRIX_PAYS: bool = true;
     /// The four node numbers of every element, counter-clockwise.
     fn connectivity(&self) -> &[[u32; 4]];

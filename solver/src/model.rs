@@ -59,9 +59,12 @@ macro_rules! with_formulation {
 pub enum Kernel {
     /// What `simulate` runs: von Mises when the material has plasticity, else [`Kernel::Elastic`].
     Solver,
-    /// Elastic, with precomputed element stiffness matrices for every element: the faster
-    /// path for all three (`impact-bench throughput`, interleaved medians on the 80 x 16
-    /// paper mesh: q4-1pt 22.6 ns through `K_e u_e` against 28.8 ns through the stresses).
+    /// Elastic, by the faster path of the element ([`Formulation::STIFFNESS_MATRIX_PAYS`]):
+    /// precomputed element stiffness matrices for q4-full and q4-sri, the stresses for
+    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, 2026-11-25,
+    /// min of 4 interleaved: q4-1pt 7.0-7.2 ns through the stresses against 8.1-8.3 ns
+    /// through `K_e u_e`, whose one-point hourglass energy costs a second pass; q4-sri 7.3 ns
+    /// through `K_e u_e` against 15.9 ns).
     Elastic,
     /// Elastic, always with precomputed element stiffness matrices.
     ElasticStiffnessMatrix,
@@ -146,8 +149,8 @@ fn with_material<F: Formulation, U: UseModel>(
     if let Some(plastic) = plastic {
         let model = PlateModel::new(formulation, plastic, mesh, m.density).with_kernel_path(path);
         // Elastic points at elastic cost where the stiffness product is cheaper than a plastic
-        // point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not for one point, whose
-        // never-yielding plastic point, 21.7 ns, costs about the product's 22.6 ns).
+        // point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not for one point, whose stress
+        // path is the cheaper one).
         return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
             model.with_elastic_screen()
         } else {
@@ -162,7 +165,11 @@ fn with_material<F: Formulation, U: UseModel>(
             "the plastic kernel needs a material with plasticity",
         ));
     }
-    let stiffness_matrix = kernel != Kernel::ElasticStressPath;
+    let stiffness_matrix = match kernel {
+        Kernel::ElasticStressPath => false,
+        Kernel::ElasticStiffnessMatrix => true,
+        _ => F::STIFFNESS_MATRIX_PAYS,
+    };
     let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
     let model = PlateModel::new(formulation, elastic, mesh, m.density).with_kernel_path(path);
     Ok(user.use_model(if stiffness_matrix {
