@@ -1,7 +1,7 @@
 //! Assembly of element forces into nodal forces (eq. 13), on one thread or several, with
 //! results bit-identical for any thread count: elements are processed in fixed chunks of
-//! [`CHUNK`], each chunk's energies summed in element order, the chunk sums added in chunk
-//! order, and every nodal force summed over its elements in element order from 0. Each chunk's
+//! [`CHUNK`], each chunk's energies summed as per-lane partial sums in element order, added in
+//! lane order ([`Energy::lane_total`]), the chunk sums added in chunk order, and every nodal force summed over its elements in element order from 0. Each chunk's
 //! forces are scattered as soon as the chunk is done (from a chunk-sized buffer, still in
 //! cache), so no per-element force array is kept. With a [`Team`], each part scatters
 //! directly into the nodes whose elements are all its own; a node shared by two parts is
@@ -11,7 +11,7 @@
 
 use std::ops::Range;
 
-use crate::element::{ElementEnergy, ElementVector};
+use crate::element::{ElementEnergy, ElementVector, Energy};
 use crate::geometry::Vector;
 use crate::heap::vec_bytes;
 use crate::row_batches::{add_run, RowBatches};
@@ -305,7 +305,8 @@ impl Assembly {
 
 /// The scalar chunk kernel: `kernel(e, states of e's batch)` element by element over
 /// `elements` (starting at a multiple of [`LANES`]; `points` states per batch), each force
-/// into its lane of `forces`, energies summed in element order.
+/// into its lane of `forces`, energies summed as the batched kernels sum them
+/// ([`Energy::lane_total`]).
 #[inline(always)]
 pub fn each_element<S>(
     elements: Range<usize>,
@@ -314,16 +315,16 @@ pub fn each_element<S>(
     points: usize,
     kernel: impl Fn(usize, &mut [S]) -> (ElementVector, ElementEnergy),
 ) -> ElementEnergy {
-    let mut energy = ElementEnergy::default();
+    let mut energy = Energy::<Lanes>::default();
     for (k, e) in elements.enumerate() {
         let batch = k / LANES;
         let (force, en) = kernel(e, &mut states[batch * points..(batch + 1) * points]);
         for (lanes, x) in forces[batch].iter_mut().zip(force) {
             lanes.0[k % LANES] = x;
         }
-        energy += en;
+        energy.add_to_lane(k % LANES, en);
     }
-    energy
+    energy.lane_total()
 }
 
 /// Some nodes and, per node, the entries of the element forces that act on it, in element

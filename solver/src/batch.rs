@@ -118,17 +118,22 @@ fn row_lanes<F: Formulation>(formulation: &F, e0: usize, u: &[f64]) -> Option<Ve
     ])
 }
 
-/// Adds the energies of the first `lanes` lanes to `total`, in lane (element) order.
+/// Adds the energies of the first `lanes` lanes to the per-lane partial sums `partial`
+/// (see [`Energy::lane_total`]).
 #[inline(always)]
-fn add_lanes(total: &mut ElementEnergy, energy: &Energy<Lanes>, lanes: usize) {
-    for l in 0..lanes {
-        *total += energy.lane(l);
+fn add_lanes(partial: &mut Energy<Lanes>, energy: &Energy<Lanes>, lanes: usize) {
+    if lanes == LANES {
+        *partial += *energy;
+    } else {
+        for l in 0..lanes {
+            partial.add_to_lane(l, energy.lane(l));
+        }
     }
 }
 
 /// The stress-path chunk kernel in batches (the elastic `screen` first where there is one):
 /// forces of the chunk's `elements` into their batches `forces`, their states updated, the
-/// chunk's energies summed in element order.
+/// chunk's energies summed per lane ([`Energy::lane_total`]).
 pub struct StressPathChunk<'a, F: Formulation, M: ConstitutiveModel> {
     pub formulation: &'a F,
     pub material: &'a M,
@@ -147,7 +152,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
     fn run(self) -> ElementEnergy {
         let (formulation, material, u) = (self.formulation, self.material, self.u);
         let (forces, states, first) = (self.forces, self.states, self.elements.start);
-        let mut energy = ElementEnergy::default();
+        let mut energy = Energy::<Lanes>::default();
         for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(&mut *forces) {
             let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
             let b = e0 / LANES;
@@ -186,7 +191,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
             *batch_forces = f;
             add_lanes(&mut energy, &en, lanes);
         }
-        energy
+        energy.lane_total()
     }
 }
 
@@ -207,7 +212,7 @@ impl<F: Formulation> Kernel for LinearChunk<'_, F> {
     #[inline(always)]
     fn run(self) -> ElementEnergy {
         let (formulation, u, first) = (self.formulation, self.u, self.elements.start);
-        let mut energy = ElementEnergy::default();
+        let mut energy = Energy::<Lanes>::default();
         for (k0, batch_forces) in (0..self.elements.len())
             .step_by(LANES)
             .zip(&mut *self.forces)
@@ -220,6 +225,6 @@ impl<F: Formulation> Kernel for LinearChunk<'_, F> {
         }
         let nodes = |e| formulation.nodes(e);
         self.scatter.chunk(self.elements, self.forces, nodes);
-        energy
+        energy.lane_total()
     }
 }

@@ -71,6 +71,28 @@ impl Energy<Lanes> {
             hourglass: self.hourglass.0[l],
         }
     }
+
+    /// Adds `energy` to lane `l`.
+    #[inline(always)]
+    pub fn add_to_lane(&mut self, l: usize, energy: ElementEnergy) {
+        self.strain.0[l] += energy.strain;
+        self.plastic_work.0[l] += energy.plastic_work;
+        self.hourglass.0[l] += energy.hourglass;
+    }
+
+    /// The lanes added in lane order. How a chunk's element energies are summed: element
+    /// `e` into the partial sum of lane `e mod LANES` in element order, then the partial sums
+    /// in lane order (the same additions on the scalar path and in lanes, on any number of
+    /// threads; a sum in element order would be a chain of dependent additions, ~17 % of
+    /// the elastic kernel's time).
+    #[inline(always)]
+    pub fn lane_total(&self) -> ElementEnergy {
+        let mut total = ElementEnergy::default();
+        for l in 0..LANES {
+            total += self.lane(l);
+        }
+        total
+    }
 }
 
 /// An element formulation over a whole mesh (geometry precomputed per element, stored once

@@ -70,19 +70,19 @@ pub fn add_run(f: &mut [f64], forces: &Vector<Lanes>, run: usize) {
     // Bottom: node l gets local node 1 of element l - 1 ("left"), then local node 0 of
     // element l ("right"); top: local nodes 2 and 3.
     let (left, right) = if run == 0 { (1, 0) } else { (2, 3) };
-    let (mut from_left, mut from_right) = ([0.0; RUN - 2], [0.0; RUN - 2]);
-    for l in 0..LANES {
-        for c in 0..2 {
-            from_left[2 * l + c] = forces[2 * left + c].0[l];
-            from_right[2 * l + c] = forces[2 * right + c].0[l];
-        }
-    }
-    // Nodes 1 ..= LANES, then nodes 0 .. LANES: on a node both touch, left before right.
-    for (x, add) in f[2..].iter_mut().zip(&from_left) {
-        *x += add;
-    }
-    for (x, add) in f[..RUN - 2].iter_mut().zip(&from_right) {
-        *x += add;
+    // Entry 2 n + c of the run from local node `a` of element n - `shift`, +0 where there
+    // is none: a nodal force is never -0 (it starts at +0, and x + y is -0 only for two -0),
+    // so adding +0 leaves it unchanged.
+    let from = |a: usize, shift: usize| -> [f64; RUN] {
+        std::array::from_fn(|i| match (i / 2).checked_sub(shift) {
+            Some(l) if l < LANES => forces[2 * a + i % 2].0[l],
+            _ => 0.0,
+        })
+    };
+    let (from_left, from_right) = (from(left, 1), from(right, 0));
+    // One pass, left before right on every node: no vector reload of what was just stored.
+    for ((x, l), r) in f.iter_mut().zip(from_left).zip(from_right) {
+        *x = *x + l + r;
     }
 }
 
