@@ -512,6 +512,37 @@ mod tests {
     }
 
     #[test]
+    fn energies_are_summed_per_lane_then_per_chunk() {
+        // The documented order (Energy::lane_total): per chunk, element e into partial sum
+        // e mod LANES in element order, the partial sums in lane order, the chunks in order.
+        let (conn, _) = grid();
+        let energies: Vec<ElementEnergy> =
+            (0..conn.len()).map(|e| kernel(e, &mut [0; 4]).1).collect();
+        let mut expected = ElementEnergy::default();
+        for chunk in energies.chunks(CHUNK) {
+            let mut partial = [ElementEnergy::default(); LANES];
+            for (k, &en) in chunk.iter().enumerate() {
+                partial[k % LANES] += en;
+            }
+            let mut total = ElementEnergy::default();
+            for p in partial {
+                total += p;
+            }
+            expected += total;
+        }
+        let bits = |en: ElementEnergy| [en.strain, en.plastic_work, en.hourglass].map(f64::to_bits);
+        // The data tell the orders apart: one sum in element order has other bits.
+        let mut in_element_order = ElementEnergy::default();
+        for &en in &energies {
+            in_element_order += en;
+        }
+        assert_ne!(bits(in_element_order), bits(expected));
+        for threads in 1..=3 {
+            assert_eq!(assembled(threads).2, bits(expected), "{threads} threads");
+        }
+    }
+
+    #[test]
     fn every_thread_count_gives_the_sequential_bits() {
         let one = assembled(1);
         assert!(one.0.iter().all(|&b| f64::from_bits(b).is_finite()));
