@@ -4,13 +4,15 @@
 //!
 //! A batch is [`LANES`] consecutive elements `b * LANES ..` inside one assembly chunk
 //! ([`crate::assembly::CHUNK`] is a multiple of [`LANES`]); the last batch of a mesh may be
-//! partial, its missing lanes padded with zero geometry and never written back. Per element
-//! the energies are summed in element order exactly as the scalar chunk does.
+//! partial, its missing lanes padded with zero geometry and never written back. The energies
+//! are summed per lane and then in lane order, as the scalar chunk sums them
+//! ([`Energy::lane_total`]).
 //!
 //! Everything stays in lanes from the gather of the displacements to the forces: the
-//! displacements are loaded by index (one gather per vector), the material states are stored
-//! batch-major (one [`ConstitutiveModel::Batch`] per point of a batch), and the forces are
-//! written as whole batches ([`BatchForces`]) that the assembly scatters.
+//! displacements are loaded by index (one gather per vector; a batch in one row of a
+//! structured mesh as two contiguous runs), the material states are stored batch-major (one
+//! [`ConstitutiveModel::Batch`] per point of a batch), and the forces are written as whole
+//! batches ([`BatchForces`]) that the assembly scatters.
 //!
 //! - The stress path: [`crate::element::response`] in lanes (strains, material update with
 //!   the masked radial return, forces and hourglass), the scalar path's kernels instantiated
@@ -21,12 +23,15 @@
 //! - The stiffness product `K_e u_e` ([`LinearChunk`]) in lanes, over the batch's matrices
 //!   stored in lanes ([`LinearKernel`]).
 //!
-//! Limits (this project's 2-core AVX-512 Xeon, 2.7 GHz): a q4-sri element-step with radial
-//! return at four points is ~700 flops; with divisions by constants written as products
-//! (see [`crate::real`]) 4 divisions and 4 square roots remain, ~7 ns of the divider. What
-//! costs more than the arithmetic is measured in `impact-bench throughput` and profiled in
-//! the speed notes: spills of the lane arrays to the stack and the per-lane energy sums,
-//! which bit-identity keeps in element order.
+//! Limits (this project's machine: an AMD EPYC of family 25 model 17, Zen 4, 2.6 GHz; its
+//! two 256-bit FMA/multiply pipes and two 256-bit add pipes retire one 512-bit multiply and
+//! one 512-bit add per cycle, 16 flops per cycle or ~42 GFLOP/s, the same with or without
+//! FMA when multiplies and adds are balanced): a q4-sri element-step with radial return at
+//! four points is ~660 flops (counted from the kernels), with 4 divisions and 4 square roots
+//! per element left after divisions by constants became products (see [`crate::real`]); the
+//! stiffness product is ~150. Measured (2026-11-25, 1 thread, 80 x 16): ~31 ns and ~7.3 ns,
+//! about half of that peak; the rest is register spills, LLVM's pairing of half-width
+//! vectors in the strain sums, and the gathers and scatters.
 
 use std::ops::Range;
 
