@@ -157,7 +157,10 @@ impl Scatter<'_> {
                 continue;
             }
             for l in 0..(elements.len() - k0).min(LANES) {
-                let fe: ElementVector = std::array::from_fn(|i| batch[i].0[l]);
+                let mut fe: ElementVector = [0.0; 8];
+                for (x, lanes) in fe.iter_mut().zip(batch) {
+                    *x = lanes.0[l];
+                }
                 self.element(e0 + l, &fe, nodes(e0 + l));
             }
         }

@@ -41,7 +41,7 @@ use crate::element::{response, ElementEnergy, Energy, Formulation};
 use crate::geometry::Vector;
 use crate::material::ConstitutiveModel;
 use crate::real::Real;
-use crate::simd::{Kernel, Lanes, Mask, LANES};
+use crate::simd::{each_lane, Kernel, Lanes, Mask, LANES};
 use crate::stiffness::LinearKernel;
 
 const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
@@ -108,9 +108,8 @@ fn row_lanes<F: Formulation>(formulation: &F, e0: usize, u: &[f64]) -> Option<Ve
     let top: &[f64; RUN] = u.get(t..t + RUN)?.try_into().ok()?;
     // Local node a, component c: from the bottom run at node l (a = 0) or l + 1 (a = 1),
     // from the top run at node l + 1 (a = 2) or l (a = 3).
-    let from = |run: &[f64; RUN], shift: usize, c: usize| {
-        Lanes(std::array::from_fn(|l| run[2 * (l + shift) + c]))
-    };
+    let from =
+        |run: &[f64; RUN], shift: usize, c: usize| Lanes(each_lane(|l| run[2 * (l + shift) + c]));
     Some([
         from(bottom, 0, 0),
         from(bottom, 0, 1),

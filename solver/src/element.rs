@@ -99,7 +99,7 @@ impl Energy<Lanes> {
 /// in batches: [`SharedBatches`]). Its kernels are written once over the number type `R`
 /// ([`Real`]): `at` is an element for `R = f64` (the scalar reference path) and a batch of
 /// [`crate::simd::LANES`] elements `at * LANES ..` for `R = Lanes` (the batched path).
-pub trait Formulation: Sync {
+pub trait Formulation: Sync + 'static {
     /// Integration points that carry material state (4 or 1).
     const POINTS: usize;
     /// Whether an elastic run is faster with precomputed element stiffness matrices than
@@ -444,14 +444,11 @@ impl Formulation for SelectiveQ4 {
         // The products first, then the sums: written as one loop, LLVM vectorised it across
         // the nodes (4-wide, with a transpose and 16 gathers and scatters per batch: ~20 %
         // of the all-yielding kernel's samples) instead of across the lanes.
-        let add: Vector<R> = std::array::from_fn(|i| {
-            let d = if i % 2 == 0 {
-                c.dndx::<R>(i / 2, at)
-            } else {
-                c.dndy::<R>(i / 2, at)
-            };
-            mean_total * d
-        });
+        let mut add: Vector<R> = [R::splat(0.0); 8];
+        for a in 0..4 {
+            add[2 * a] = mean_total * c.dndx::<R>(a, at);
+            add[2 * a + 1] = mean_total * c.dndy::<R>(a, at);
+        }
         for (x, add) in f.iter_mut().zip(add) {
             *x += add;
         }

@@ -4,11 +4,10 @@
 
 use std::result::Result as StdResult;
 
-use crate::assembly::{each_element, Assembly, ScatterChunk};
-use crate::batch;
+use crate::assembly::Assembly;
 use crate::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
 use crate::elastic_screen::ElasticScreen;
-use crate::element::{gather, lumped_masses, response, ElementEnergy, Formulation};
+use crate::element::{gather, lumped_masses, Formulation};
 use crate::energy::{BalanceMonitor, Energies};
 use crate::error::{Error, Result};
 use crate::heap;
@@ -21,7 +20,7 @@ use crate::material::Elastic;
 use crate::material::{von_mises, ConstitutiveModel, Stress};
 use crate::mesh::PlateMesh;
 use crate::scene::{DtChoice, End, Impactor, Scene};
-use crate::simd::{dispatch, Kernel, KernelPath, Lanes, LANES};
+use crate::simd::{dispatch, each_lane, Kernel, KernelPath, Lanes, LANES};
 use crate::stable_step::{self, Estimate, Spring};
 use crate::stiffness::LinearKernel;
 
@@ -114,103 +113,6 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     pub fn with_kernel_path(mut self, path: KernelPath) -> Self {
         self.kernel_path = path;
         self
-    }
-
-    /// Internal forces at `u` into `f` (overwritten), updating the material states.
-    pub fn internal_forces(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
-        let PlateModel {
-            formulation,
-            material,
-            states,
-            linear,
-            screen,
-            assembly,
-            kernel_path,
-            ..
-        } = self;
-        let (formulation, material, path) = (&*formulation, &*material, *kernel_path);
-        let screen = screen.as_ref();
-        let nodes = |e: usize| formulation.nodes(e);
-        match (linear, path) {
-            (Some(k), KernelPath::Scalar) => assembly.assemble(
-                states,
-                F::POINTS,
-                |elements, forces, states, scatter| {
-                    let energy =
-                        each_element(elements.clone(), forces, states, F::POINTS, |e, _| {
-                            k.element(formulation, e, u)
-                        });
-                    scatter.chunk(elements, forces, nodes);
-                    energy
-                },
-                f,
-            ),
-            (Some(k), KernelPath::Batched(isa)) => assembly.assemble(
-                states,
-                F::POINTS,
-                |elements, forces, _, scatter| {
-                    let chunk = batch::LinearChunk {
-                        kernel: k,
-                        formulation,
-                        u,
-                        elements,
-                        forces,
-                        scatter,
-                    };
-                    dispatch(isa, chunk)
-                },
-                f,
-            ),
-            (None, KernelPath::Scalar) => assembly.assemble(
-                states,
-                F::POINTS,
-                |elements, forces, states, scatter| {
-                    let energy =
-                        each_element(elements.clone(), forces, states, F::POINTS, |e, states| {
-                            let ue = gather(formulation.nodes(e), u);
-                            screen
-                                .and_then(|s| s.element(formulation, material, e, &ue, states))
-                                .unwrap_or_else(|| {
-                                    response(formulation, material, e, &ue, (states, true))
-                                })
-                        });
-                    scatter.chunk(elements, forces, nodes);
-                    energy
-                },
-                f,
-            ),
-            (None, KernelPath::Batched(isa)) => assembly.assemble(
-                states,
-                F::POINTS,
-                |elements, forces, states, scatter| {
-                    let chunk = batch::StressPathChunk {
-                        formulation,
-                        material,
-                        screen,
-                        u,
-                        elements: elements.clone(),
-                        forces,
-                        states,
-                    };
-                    // Scattered by a kernel of its own: compiled into the stress path's (as
-                    // the stiffness product's is), the paper plastic run took 1.04 s instead
-                    // of 0.72 s on one thread (2026-11-25).
-                    let energy = dispatch(isa, chunk);
-                    let forces = &*forces;
-                    dispatch(
-                        isa,
-                        ScatterChunk {
-                            scatter,
-                            elements,
-                            forces,
-                            nodes,
-                        },
-                    );
-                    energy
-                },
-                f,
-            ),
-        }
     }
 
     /// Switches the internal forces to precomputed element stiffness matrices. Only valid
@@ -788,9 +690,9 @@ impl Kernel for VelocityUpdate<'_> {
 /// compiled for the baseline.)
 #[inline(always)]
 fn velocity_group(v: &mut [f64], f: &[f64], inverse_mass: &[f64], m: &[f64], h: f64) -> Lanes {
-    let lanes = |x: &[f64]| Lanes(std::array::from_fn(|i| x[i]));
+    let lanes = |x: &[f64]| Lanes(each_lane(|i| x[i]));
     let (old, f, im) = (lanes(v), lanes(f), lanes(inverse_mass));
-    let m = Lanes(std::array::from_fn(|i| m[i / 2]));
+    let m = Lanes(each_lane(|i| m[i / 2]));
     let new = old + h * (f.map(|x| -x) * im);
     let mean = 0.5 * (old + new);
     v.copy_from_slice(&new.0);

@@ -22,6 +22,7 @@ pub mod heap;
 pub mod history;
 pub mod impactor;
 pub mod integrator;
+pub mod internal_forces;
 pub mod interrupt;
 pub mod load;
 pub mod material;

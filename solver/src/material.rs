@@ -30,7 +30,7 @@ pub type PointResponse = Response<f64>;
 /// holds the states of one point of [`crate::simd::LANES`] consecutive elements in lanes,
 /// so the batched kernels load and store whole registers. Elastic models have zero-sized
 /// states, so an elastic run allocates no plasticity state at all.
-pub trait ConstitutiveModel: Sync {
+pub trait ConstitutiveModel: Sync + 'static {
     /// The state of one point.
     type State: Copy + Default + Send + Sync + std::fmt::Debug;
     /// The states of one point of a batch of elements, in lanes.

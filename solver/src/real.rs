@@ -17,7 +17,7 @@
 
 use std::ops::{Add, AddAssign, Div, Mul, Sub};
 
-use crate::simd::{Lanes, Mask, LANES};
+use crate::simd::{each_lane, Lanes, Mask, LANES};
 
 /// 1/3, rounded once: the kernels multiply by it where the formula divides by 3 (see the
 /// module documentation).
@@ -156,18 +156,12 @@ impl Real for Lanes {
     }
     #[inline(always)]
     fn gt(self, other: Lanes) -> Mask {
-        Mask(std::array::from_fn(|l| {
-            if self.0[l] > other.0[l] {
-                !0
-            } else {
-                0
-            }
-        }))
+        Mask(each_lane(|l| if self.0[l] > other.0[l] { !0 } else { 0 }))
     }
     #[inline(always)]
     fn select(mask: Mask, a: Lanes, b: Lanes) -> Lanes {
         // Bitwise, so that it compiles to one blend.
-        Lanes(std::array::from_fn(|l| {
+        Lanes(each_lane(|l| {
             let (a, b, m) = (a.0[l].to_bits(), b.0[l].to_bits(), mask.0[l]);
             f64::from_bits((a & m) | (b & !m))
         }))
@@ -178,11 +172,11 @@ impl Real for Lanes {
     }
     #[inline(always)]
     fn and(a: Mask, b: Mask) -> Mask {
-        Mask(std::array::from_fn(|l| a.0[l] & b.0[l]))
+        Mask(each_lane(|l| a.0[l] & b.0[l]))
     }
     #[inline(always)]
     fn not(m: Mask) -> Mask {
-        Mask(m.0.map(|x| !x))
+        Mask(each_lane(|l| !m.0[l]))
     }
     #[inline(always)]
     fn store(stored: &mut Lanes, _: usize, value: Lanes, mask: Mask) {

@@ -74,10 +74,13 @@ pub fn add_run(f: &mut [f64], forces: &Vector<Lanes>, run: usize) {
     // is none: a nodal force is never -0 (it starts at +0, and x + y is -0 only for two -0),
     // so adding +0 leaves it unchanged.
     let from = |a: usize, shift: usize| -> [f64; RUN] {
-        std::array::from_fn(|i| match (i / 2).checked_sub(shift) {
-            Some(l) if l < LANES => forces[2 * a + i % 2].0[l],
-            _ => 0.0,
-        })
+        let mut run = [0.0; RUN];
+        for (i, x) in run.iter_mut().enumerate() {
+            if let Some(l) = (i / 2).checked_sub(shift).filter(|&l| l < LANES) {
+                *x = forces[2 * a + i % 2].0[l];
+            }
+        }
+        run
     };
     let (from_left, from_right) = (from(left, 1), from(right, 0));
     // One pass, left before right on every node: no vector reload of what was just stored.

@@ -1,0 +1,168 @@
+//! The internal forces of the plate model (eq. 13 assembled from the element kernels),
+//! compiled once, in this crate, for every formulation and material.
+//!
+//! Rust compiles a generic function in each crate that uses it, so the batched kernels were
+//! compiled anew into every binary (the solver's, the benchmarks', the Python module's), and
+//! LLVM's vectoriser did not always make the same code of them: measured 2026-11-25, the same
+//! q4-sri all-yielding kernel ran 30.6 ns per element-step in one binary and 34.5 ns in
+//! another, q4-full 65.8 and 28.6 ns (same bits). Here each (formulation, material) pair has
+//! one non-generic function, and the generic [`PlateModel::internal_forces`] finds its pair by
+//! type (a comparison of type ids that the compiler resolves) and calls it: every binary runs
+//! the code compiled here, so the benchmarks time what `impact` runs. A pair not listed (a
+//! test's own formulation, say) is compiled where it is used, as before.
+
+use std::any::Any;
+
+use crate::assembly::{each_element, ScatterChunk};
+use crate::batch;
+use crate::element::{
+    gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
+};
+use crate::integrator::PlateModel;
+use crate::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::simd::{dispatch, KernelPath};
+
+impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
+    /// Internal forces at `u` into `f` (overwritten), updating the material states.
+    pub fn internal_forces(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        match compiled_here(self, u, f) {
+            Some(energy) => energy,
+            None => self.forces_here(u, f),
+        }
+    }
+
+    /// [`PlateModel::internal_forces`] compiled where it is called (the generic body).
+    #[inline(always)]
+    fn forces_here(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        let PlateModel {
+            formulation,
+            material,
+            states,
+            linear,
+            screen,
+            assembly,
+            kernel_path,
+            ..
+        } = self;
+        let (formulation, material, path) = (&*formulation, &*material, *kernel_path);
+        let screen = screen.as_ref();
+        let nodes = |e: usize| formulation.nodes(e);
+        match (linear, path) {
+            (Some(k), KernelPath::Scalar) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    let energy =
+                        each_element(elements.clone(), forces, states, F::POINTS, |e, _| {
+                            k.element(formulation, e, u)
+                        });
+                    scatter.chunk(elements, forces, nodes);
+                    energy
+                },
+                f,
+            ),
+            (Some(k), KernelPath::Batched(isa)) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, _, scatter| {
+                    let chunk = batch::LinearChunk {
+                        kernel: k,
+                        formulation,
+                        u,
+                        elements,
+                        forces,
+                        scatter,
+                    };
+                    dispatch(isa, chunk)
+                },
+                f,
+            ),
+            (None, KernelPath::Scalar) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    let energy =
+                        each_element(elements.clone(), forces, states, F::POINTS, |e, states| {
+                            let ue = gather(formulation.nodes(e), u);
+                            screen
+                                .and_then(|s| s.element(formulation, material, e, &ue, states))
+                                .unwrap_or_else(|| {
+                                    response(formulation, material, e, &ue, (states, true))
+                                })
+                        });
+                    scatter.chunk(elements, forces, nodes);
+                    energy
+                },
+                f,
+            ),
+            (None, KernelPath::Batched(isa)) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    let chunk = batch::StressPathChunk {
+                        formulation,
+                        material,
+                        screen,
+                        u,
+                        elements: elements.clone(),
+                        forces,
+                        states,
+                    };
+                    // Scattered by a kernel of its own: compiled into the stress path's (as
+                    // the stiffness product's is), the paper plastic run took 1.04 s instead
+                    // of 0.72 s on one thread (2026-11-25).
+                    let energy = dispatch(isa, chunk);
+                    let forces = &*forces;
+                    dispatch(
+                        isa,
+                        ScatterChunk {
+                            scatter,
+                            elements,
+                            forces,
+                            nodes,
+                        },
+                    );
+                    energy
+                },
+                f,
+            ),
+        }
+    }
+}
+
+/// One non-generic function per (formulation, material) pair, and the lookup by type.
+macro_rules! compiled {
+    ($($name:ident: $f:ty, $m:ty;)*) => {
+        $(
+            #[inline(never)]
+            fn $name(model: &mut PlateModel<$f, $m>, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+                model.forces_here(u, f)
+            }
+        )*
+
+        /// The internal forces by the function compiled here for `model`'s pair, if any.
+        #[inline(always)]
+        fn compiled_here<F: Formulation, M: ConstitutiveModel>(
+            model: &mut PlateModel<F, M>,
+            u: &[f64],
+            f: &mut [f64],
+        ) -> Option<ElementEnergy> {
+            let model: &mut dyn Any = model;
+            $(
+                if let Some(model) = model.downcast_mut::<PlateModel<$f, $m>>() {
+                    return Some($name(model, u, f));
+                }
+            )*
+            None
+        }
+    };
+}
+
+compiled! {
+    full_elastic: FullQ4, Elastic;
+    full_plastic: FullQ4, VonMises;
+    selective_elastic: SelectiveQ4, Elastic;
+    selective_plastic: SelectiveQ4, VonMises;
+    one_point_elastic: OnePointQ4, Elastic;
+    one_point_plastic: OnePointQ4, VonMises;
+}
