@@ -123,10 +123,17 @@ impl PointGeometry<Lanes> {
     /// Adds `w B^T s` (in-plane stress components, Pa; weight `w`, m^3) at `at` to `f` (N).
     #[inline(always)]
     pub fn add_divergence<R: Real>(&self, at: usize, w: R, s: &[R; 4], f: &mut Vector<R>) {
+        // The terms first, then the sums: as one loop, LLVM vectorised it across the nodes
+        // (with gathers and scatters per batch: q4-full's all-yielding kernel 64 ns) instead
+        // of across the lanes.
+        let mut add = [R::splat(0.0); 8];
         for a in 0..4 {
             let (dx, dy) = (self.dndx::<R>(a, at), self.dndy::<R>(a, at));
-            f[2 * a] += w * (dx * s[0] + dy * s[3]);
-            f[2 * a + 1] += w * (dy * s[1] + dx * s[3]);
+            add[2 * a] = w * (dx * s[0] + dy * s[3]);
+            add[2 * a + 1] = w * (dy * s[1] + dx * s[3]);
+        }
+        for (x, add) in f.iter_mut().zip(add) {
+            *x += add;
         }
     }
 }
