@@ -29,9 +29,11 @@
 //! FMA when multiplies and adds are balanced): a q4-sri element-step with radial return at
 //! four points is ~660 flops (counted from the kernels), with 4 divisions and 4 square roots
 //! per element left after divisions by constants became products (see [`crate::real`]); the
-//! stiffness product is ~150. Measured (2026-11-25, 1 thread, 80 x 16): ~31 ns and ~7.3 ns,
-//! about half of that peak; the rest is register spills, LLVM's pairing of half-width
-//! vectors in the strain sums, and the gathers and scatters.
+//! stiffness product is ~150. Measured (2026-11-25, 1 thread, 80 x 16, `impact-bench
+//! throughput`): 29.5 ns and 7.4 ns, 22 and 20 GFLOP/s, about half of that peak. In the
+//! profiles (perf, cpu-clock samples) the rest is register spills and reloads (~12 % of the
+//! yielding kernel), the latency of each point's square root and division (~9 %), and the
+//! row scatter (~20 % of the stiffness product's time).
 
 use std::ops::Range;
 
