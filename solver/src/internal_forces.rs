@@ -166,3 +166,58 @@ compiled! {
     one_point_elastic: OnePointQ4, Elastic;
     one_point_plastic: OnePointQ4, VonMises;
 }
+
+#[cfg(test)]
+mod tests {
+    //! Every (formulation, material) pair the solver builds takes the function compiled here
+    //! (else each binary would compile its own copy, as before), with the generic body's bits.
+    use super::*;
+    use crate::mesh::test_plate_mesh;
+    use crate::scene::{Hardening, Material, Plasticity};
+
+    fn von_mises() -> VonMises {
+        VonMises::new(&Material {
+            density: 7850.0,
+            youngs_modulus: 207e9,
+            poisson_ratio: 0.3,
+            plasticity: Some(Plasticity {
+                yield_stress: 176e6,
+                hardening: Hardening::Linear {
+                    tangent_modulus: 1e9,
+                },
+            }),
+        })
+        .expect("a plastic material")
+    }
+
+    /// Two models made by `make`: one through the function compiled here, one through the
+    /// generic body, at a field that yields some points; the same forces and energies.
+    fn check<F: Formulation, M: ConstitutiveModel>(make: impl Fn() -> PlateModel<F, M>) {
+        let (mut here, mut generic) = (make(), make());
+        let u: Vec<f64> = (0..here.inverse_mass.len())
+            .map(|i| 1e-4 * (i as f64 * 0.7).sin())
+            .collect();
+        let (mut f_here, mut f_generic) = (vec![0.0; u.len()], vec![0.0; u.len()]);
+        let energy = compiled_here(&mut here, &u, &mut f_here).expect("a pair compiled here");
+        let expected = generic.forces_here(&u, &mut f_generic);
+        let bits = |f: &[f64]| f.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&f_here), bits(&f_generic));
+        assert_eq!(energy, expected);
+    }
+
+    #[test]
+    fn every_pair_the_solver_builds_is_compiled_here() {
+        let mesh = test_plate_mesh(12, 4, 3.0);
+        let (width, elastic) = (0.02, Elastic::new(207e9, 0.3));
+        let p_modulus = elastic.lambda + 2.0 * elastic.mu;
+        let full = || FullQ4::new(&mesh.mesh, width).expect("a valid mesh");
+        let selective = || SelectiveQ4::new(&mesh.mesh, width).expect("a valid mesh");
+        let one_point = || OnePointQ4::new(&mesh.mesh, width, 0.05, p_modulus).expect("valid");
+        check(|| PlateModel::new(full(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(full(), von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(selective(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(selective(), von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(one_point(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(one_point(), von_mises(), &mesh, 7850.0));
+    }
+}
