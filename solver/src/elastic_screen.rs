@@ -109,9 +109,8 @@ mod tests {
     //! near yield the screen must refuse every element the stress path lets yield.
     use super::*;
     use crate::element::{element_response, gather, FullQ4, OnePointQ4, SelectiveQ4};
-    use crate::material::{Elastic, PlasticBatch, PlasticState, VonMises};
+    use crate::material::{test_von_mises, Elastic, PlasticBatch, PlasticState, VonMises};
     use crate::mesh::Mesh;
-    use crate::scene::{Hardening, Material, Plasticity};
 
     /// Element `e`'s point `states` in its lane of batches.
     fn in_batches(states: &[PlasticState], e: usize) -> Vec<PlasticBatch> {
@@ -127,18 +126,7 @@ mod tests {
 
     fn check<F: Formulation>(make: impl Fn(&Mesh) -> F) {
         let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);
-        let material = VonMises::new(&Material {
-            density: 7850.0,
-            youngs_modulus: 207e9,
-            poisson_ratio: 0.3,
-            plasticity: Some(Plasticity {
-                yield_stress: 176e6,
-                hardening: Hardening::Linear {
-                    tangent_modulus: 1e9,
-                },
-            }),
-        })
-        .unwrap();
+        let material = test_von_mises();
         let formulation = make(&mesh.mesh);
         let screen = ElasticScreen::new(&formulation, &material).unwrap();
         let (mut fast, mut refused_yielding) = (0, 0);

@@ -172,23 +172,8 @@ mod tests {
     //! Every (formulation, material) pair the solver builds takes the function compiled here
     //! (else each binary would compile its own copy, as before), with the generic body's bits.
     use super::*;
+    use crate::material::test_von_mises;
     use crate::mesh::test_plate_mesh;
-    use crate::scene::{Hardening, Material, Plasticity};
-
-    fn von_mises() -> VonMises {
-        VonMises::new(&Material {
-            density: 7850.0,
-            youngs_modulus: 207e9,
-            poisson_ratio: 0.3,
-            plasticity: Some(Plasticity {
-                yield_stress: 176e6,
-                hardening: Hardening::Linear {
-                    tangent_modulus: 1e9,
-                },
-            }),
-        })
-        .expect("a plastic material")
-    }
 
     /// Two models made by `make`: one through the function compiled here, one through the
     /// generic body, at a field that yields some points; the same forces and energies.
@@ -214,10 +199,10 @@ mod tests {
         let selective = || SelectiveQ4::new(&mesh.mesh, width).expect("a valid mesh");
         let one_point = || OnePointQ4::new(&mesh.mesh, width, 0.05, p_modulus).expect("valid");
         check(|| PlateModel::new(full(), elastic, &mesh, 7850.0));
-        check(|| PlateModel::new(full(), von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(full(), test_von_mises(), &mesh, 7850.0));
         check(|| PlateModel::new(selective(), elastic, &mesh, 7850.0));
-        check(|| PlateModel::new(selective(), von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(selective(), test_von_mises(), &mesh, 7850.0));
         check(|| PlateModel::new(one_point(), elastic, &mesh, 7850.0));
-        check(|| PlateModel::new(one_point(), von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(one_point(), test_von_mises(), &mesh, 7850.0));
     }
 }

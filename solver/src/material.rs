@@ -463,6 +463,24 @@ impl VonMises {
     }
 }
 
+/// Steel with a 176 MPa yield stress and 1 GPa linear hardening: the plastic material of the
+/// solver's unit tests.
+#[cfg(test)]
+pub(crate) fn test_von_mises() -> VonMises {
+    VonMises::new(&MaterialSpec {
+        density: 7850.0,
+        youngs_modulus: 207e9,
+        poisson_ratio: 0.3,
+        plasticity: Some(crate::scene::Plasticity {
+            yield_stress: 176e6,
+            hardening: Hardening::Linear {
+                tangent_modulus: 1e9,
+            },
+        }),
+    })
+    .expect("a material with plasticity")
+}
+
 #[cfg(test)]
 mod tests {
     //! Radial return against closed forms: uniaxial strain (plane strain, eps_xx only)
