@@ -43,6 +43,7 @@ use crate::element::{response, ElementEnergy, Energy, Formulation};
 use crate::geometry::Vector;
 use crate::material::ConstitutiveModel;
 use crate::real::Real;
+use crate::row_batches::row_of;
 use crate::simd::{each_lane, Kernel, Lanes, Mask, LANES};
 use crate::stiffness::LinearKernel;
 
@@ -96,14 +97,7 @@ fn gather_lanes<F: Formulation>(
 /// kernel's samples).
 #[inline(always)]
 fn row_lanes<F: Formulation>(formulation: &F, e0: usize, u: &[f64]) -> Option<Vector<Lanes>> {
-    let [b, _, _, t] = formulation.nodes(e0);
-    let mut row = true;
-    for l in 0..LANES as u32 {
-        row &= formulation.nodes(e0 + l as usize) == [b + l, b + l + 1, t + l + 1, t + l];
-    }
-    if !row {
-        return None;
-    }
+    let [b, t] = row_of(|e| formulation.nodes(e), e0)?;
     let (b, t) = (2 * b as usize, 2 * t as usize);
     const RUN: usize = 2 * (LANES + 1);
     let bottom: &[f64; RUN] = u.get(b..b + RUN)?.try_into().ok()?;
@@ -159,7 +153,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
         let (formulation, material, u) = (self.formulation, self.material, self.u);
         let (forces, states, first) = (self.forces, self.states, self.elements.start);
         let mut energy = Energy::<Lanes>::default();
-        for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(&mut *forces) {
+        for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(forces) {
             let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
             let b = e0 / LANES;
             let ue = gather_lanes(formulation, e0, lanes, u);

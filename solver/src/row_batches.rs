@@ -27,22 +27,14 @@ impl RowBatches {
     /// The row batches of `connectivity` (nodes counter-clockwise), leaving out the batches
     /// with an element for which `excluded(e)` holds.
     pub fn new(connectivity: &[[u32; 4]], excluded: impl Fn(usize) -> bool) -> RowBatches {
-        let first = connectivity
-            .chunks(LANES)
-            .enumerate()
-            .map(|(k, batch)| {
-                let (b, t) = (batch[0][0], batch[0][3]);
-                let row = batch.len() == LANES
-                    && b.abs_diff(t) as usize > LANES
-                    && batch.iter().enumerate().all(|(l, nodes)| {
-                        let l = l as u32;
-                        *nodes == [b + l, b + l + 1, t + l + 1, t + l]
-                            && !excluded(k * LANES + l as usize)
-                    });
-                if row {
-                    [b, t]
-                } else {
-                    NONE
+        let n = connectivity.len();
+        let first = (0..n.div_ceil(LANES))
+            .map(|k| {
+                let e0 = k * LANES;
+                let full = e0 + LANES <= n;
+                match full.then(|| row_of(|e| connectivity[e], e0)).flatten() {
+                    Some(first) if !(e0..e0 + LANES).any(&excluded) => first,
+                    _ => NONE,
                 }
             })
             .collect();
@@ -59,6 +51,18 @@ impl RowBatches {
     pub fn heap_bytes(&self) -> usize {
         vec_bytes(&self.first)
     }
+}
+
+/// The first bottom and top node of the [`LANES`] elements from `e0` (`nodes(e)`: element
+/// `e`'s nodes) when they lie in one row (see the module documentation), else `None`.
+#[inline(always)]
+pub fn row_of(nodes: impl Fn(usize) -> [u32; 4], e0: usize) -> Option<[u32; 2]> {
+    let [b, _, _, t] = nodes(e0);
+    let mut row = b.abs_diff(t) as usize > LANES;
+    for l in 0..LANES as u32 {
+        row &= nodes(e0 + l as usize) == [b + l, b + l + 1, t + l + 1, t + l];
+    }
+    row.then_some([b, t])
 }
 
 /// Adds a row batch's element `forces` (N; entry `2 a + c`: component `c` of local node
