@@ -1,9 +1,10 @@
 //! Assembly of element forces into nodal forces (eq. 13), on one thread or several, with
 //! results bit-identical for any thread count: elements are processed in fixed chunks of
 //! [`CHUNK`], each chunk's energies summed as per-lane partial sums in element order, added in
-//! lane order ([`Energy::lane_total`]), the chunk sums added in chunk order, and every nodal force summed over its elements in element order from 0. Each chunk's
-//! forces are scattered as soon as the chunk is done (from a chunk-sized buffer, still in
-//! cache), so no per-element force array is kept. With a [`Team`], each part scatters
+//! lane order ([`Energy::lane_total`]), the chunk sums added in chunk order, and every nodal
+//! force summed over its elements in element order from 0. Each chunk's forces are scattered
+//! as soon as the chunk is done (from a chunk-sized buffer, still in cache), so no
+//! per-element force array is kept. With a [`Team`], each part scatters
 //! directly into the nodes whose elements are all its own; a node shared by two parts is
 //! summed after the job from the kept forces of its elements, in element order: the same
 //! additions in the same order. Threads only change who computes a chunk or a node, never
@@ -108,8 +109,8 @@ fn part_elements(n_chunks: usize, n_elements: usize, parts: usize, part: usize) 
 
 /// Where a chunk's forces go: every node straight into `f`, or, on several threads, only the
 /// nodes not `shared`, the forces of the elements with a `slot` copied into `kept`. The chunk
-/// kernel calls [`Scatter::chunk`] itself, so that the scatter is compiled with the kernel (for
-/// its instruction set: the row batches' vector sums in AVX-512 where the kernel is).
+/// kernel calls [`Scatter::chunk`] itself (or through [`ScatterChunk`]), so that the scatter
+/// is compiled for the kernel's instruction set (the row batches' vector sums in AVX-512).
 pub struct Scatter<'a> {
     f: &'a Disjoint<f64>,
     /// The batches that lie in one row and have no shared node: added a batch at a time.
@@ -241,8 +242,8 @@ impl Assembly {
     /// Computes every element's forces with `chunk_kernel(elements of the chunk, their
     /// batches of forces, their states, scatter)` (states: `points` per batch of [`LANES`]
     /// elements; the kernel scatters the forces with `scatter.chunk` and returns the chunk's
-    /// energies summed in element order) into `f` (overwritten) and returns the summed
-    /// energies.
+    /// energies summed as [`Energy::lane_total`] sums them) into `f` (overwritten) and
+    /// returns the summed energies.
     pub fn assemble<S: Send>(
         &mut self,
         states: &mut [S],
@@ -308,18 +309,17 @@ impl Assembly {
 
 /// The scalar chunk kernel: `kernel(e, states of e's batch)` element by element over
 /// `elements` (starting at a multiple of [`LANES`]; `points` states per batch), each force
-/// into its lane of `forces`, energies summed as the batched kernels sum them
-/// ([`Energy::lane_total`]).
+/// into its lane of `forces`, then scattered (`nodes(e)`: element `e`'s nodes); energies
+/// summed as the batched kernels sum them ([`Energy::lane_total`]).
 #[inline(always)]
 pub fn each_element<S>(
-    elements: Range<usize>,
-    forces: &mut [BatchForces],
-    states: &mut [S],
+    (elements, forces, states, scatter): (Range<usize>, &mut [BatchForces], &mut [S], &Scatter),
     points: usize,
+    nodes: impl Fn(usize) -> [u32; 4],
     kernel: impl Fn(usize, &mut [S]) -> (ElementVector, ElementEnergy),
 ) -> ElementEnergy {
     let mut energy = Energy::<Lanes>::default();
-    for (k, e) in elements.enumerate() {
+    for (k, e) in elements.clone().enumerate() {
         let batch = k / LANES;
         let (force, en) = kernel(e, &mut states[batch * points..(batch + 1) * points]);
         for (lanes, x) in forces[batch].iter_mut().zip(force) {
@@ -327,6 +327,7 @@ pub fn each_element<S>(
         }
         energy.add_to_lane(k % LANES, en);
     }
+    scatter.chunk(elements, forces, nodes);
     energy.lane_total()
 }
 
@@ -478,9 +479,7 @@ mod tests {
                 &mut states,
                 4,
                 |elements, forces, states, scatter| {
-                    let energy = each_element(elements.clone(), forces, states, 4, kernel);
-                    scatter.chunk(elements, forces, |e| conn[e]);
-                    energy
+                    each_element((elements, forces, states, scatter), 4, |e| conn[e], kernel)
                 },
                 &mut f,
             );

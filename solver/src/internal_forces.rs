@@ -52,12 +52,8 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 |elements, forces, states, scatter| {
-                    let energy =
-                        each_element(elements.clone(), forces, states, F::POINTS, |e, _| {
-                            k.element(formulation, e, u)
-                        });
-                    scatter.chunk(elements, forces, nodes);
-                    energy
+                    let chunk = (elements, forces, states, scatter);
+                    each_element(chunk, F::POINTS, nodes, |e, _| k.element(formulation, e, u))
                 },
                 f,
             ),
@@ -81,17 +77,15 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 |elements, forces, states, scatter| {
-                    let energy =
-                        each_element(elements.clone(), forces, states, F::POINTS, |e, states| {
-                            let ue = gather(formulation.nodes(e), u);
-                            screen
-                                .and_then(|s| s.element(formulation, material, e, &ue, states))
-                                .unwrap_or_else(|| {
-                                    response(formulation, material, e, &ue, (states, true))
-                                })
-                        });
-                    scatter.chunk(elements, forces, nodes);
-                    energy
+                    let chunk = (elements, forces, states, scatter);
+                    each_element(chunk, F::POINTS, nodes, |e, states| {
+                        let ue = gather(formulation.nodes(e), u);
+                        screen
+                            .and_then(|s| s.element(formulation, material, e, &ue, states))
+                            .unwrap_or_else(|| {
+                                response(formulation, material, e, &ue, (states, true))
+                            })
+                    })
                 },
                 f,
             ),
