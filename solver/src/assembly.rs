@@ -15,7 +15,7 @@ use std::ops::Range;
 use crate::element::{ElementEnergy, ElementVector, Energy};
 use crate::geometry::Vector;
 use crate::heap::vec_bytes;
-use crate::row_batches::{add_run, RowBatches};
+use crate::row_batches::{add_run, Pending, RowBatches};
 use crate::simd::{Kernel, Lanes, LANES};
 use crate::workers::{part_range, threads_here, Team};
 
@@ -138,8 +138,9 @@ impl<N: Fn(usize) -> [u32; 4]> Kernel for ScatterChunk<'_, N> {
 
 impl Scatter<'_> {
     /// Scatters the forces `forces` of the chunk's `elements` (`nodes(e)`: element `e`'s
-    /// nodes), in element order: a row batch at once ([`add_run`]), the others element by
-    /// element.
+    /// nodes), in element order: a row batch at once ([`add_run`]; the last node of each of
+    /// its runs kept in a register for the next row batch of the row, [`Pending`]), the
+    /// others element by element.
     #[inline(always)]
     pub fn chunk(
         &self,
@@ -147,16 +148,31 @@ impl Scatter<'_> {
         forces: &[BatchForces],
         nodes: impl Fn(usize) -> [u32; 4],
     ) {
+        let mut pending: [Option<Pending>; 2] = [None; 2];
         for (k0, batch) in (0..elements.len()).step_by(LANES).zip(forces) {
             let e0 = elements.start + k0;
             if let Some(runs) = self.rows.runs(e0 / LANES) {
-                for (run, first) in runs.into_iter().enumerate() {
+                // Every pending node the batch does not continue is stored first: it may be
+                // a node of the batch's other run (a row one batch wide).
+                let carried = [0, 1].map(|run| Pending::carried_to(pending[run], runs[run]));
+                for (pending, carried) in pending.iter_mut().zip(carried) {
+                    if carried.is_none() {
+                        self.store(pending.take());
+                    }
+                }
+                for ((run, first), pending) in runs.into_iter().enumerate().zip(&mut pending) {
+                    let carried = carried[run];
                     // SAFETY: a row batch has no shared node: its nodes are its part's.
                     let f = unsafe { self.f.slice(2 * first..2 * first + 2 * (LANES + 1)) };
-                    add_run(f, batch, run);
+                    let force = add_run(f, batch, run, carried);
+                    *pending = Some(Pending {
+                        node: first + LANES,
+                        force,
+                    });
                 }
                 continue;
             }
+            pending.iter_mut().for_each(|p| self.store(p.take()));
             for l in 0..(elements.len() - k0).min(LANES) {
                 let mut fe: ElementVector = [0.0; 8];
                 for (x, lanes) in fe.iter_mut().zip(batch) {
@@ -164,6 +180,16 @@ impl Scatter<'_> {
                 }
                 self.element(e0 + l, &fe, nodes(e0 + l));
             }
+        }
+        pending.iter_mut().for_each(|p| self.store(p.take()));
+    }
+
+    /// Stores a run's `pending` last node.
+    #[inline(always)]
+    fn store(&self, pending: Option<Pending>) {
+        if let Some(Pending { node, force }) = pending {
+            // SAFETY: the node is a row batch's, so its part's (see `chunk`).
+            unsafe { self.f.slice(2 * node..2 * node + 2) }.copy_from_slice(&force);
         }
     }
 
@@ -490,10 +516,11 @@ mod tests {
 
     #[test]
     fn the_assembly_adds_as_the_element_scatter_in_element_order() {
-        // Rows of 16 (every batch in a row: the row scatter) and of 13 (batches across rows:
-        // element by element), on 1 to 3 threads (the shared nodes' batches go element by
-        // element).
-        for (nx, ny) in [(16, 9), (13, 11), (24, 3)] {
+        // Rows of 8, 16 and 24 (every batch in a row: the row scatter, a row's last node
+        // carried to the next batch of the row; one batch per row: the top run's last node
+        // is the next bottom run's last) and of 13 (batches across rows: element by
+        // element), on 1 to 3 threads (the shared nodes' batches go element by element).
+        for (nx, ny) in [(8, 5), (16, 9), (13, 11), (24, 3)] {
             let (conn, n_nodes) = grid_of(nx, ny);
             let mut reference = vec![0.0; 2 * n_nodes];
             for (e, &nodes) in conn.iter().enumerate() {

@@ -161,7 +161,10 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
             // The screened lanes: virgin (every point) and below the screen's bound.
             // (No product when no lane is virgin: yielded elements never take it.)
             let mut screened = None;
-            if let Some(screen) = self.screen {
+            // A material without states never yields and has no screen: the branch is not
+            // compiled for it (its code changed the elastic stress path's registers).
+            let can_yield = std::mem::size_of::<M::Batch>() > 0;
+            if let Some(screen) = self.screen.filter(|_| can_yield) {
                 let mut virgin = active;
                 for batch in &states[k0 / LANES * F::POINTS..][..F::POINTS] {
                     virgin = Lanes::and(virgin, material.virgin::<Lanes>(batch, b));

@@ -67,9 +67,19 @@ pub fn row_of(nodes: impl Fn(usize) -> [u32; 4], e0: usize) -> Option<[u32; 2]> 
 
 /// Adds a row batch's element `forces` (N; entry `2 a + c`: component `c` of local node
 /// `a`, in lanes) to the nodal forces of its bottom `run` (`[0]`) or top run (`[1]`): the
-/// `RUN` doubles (x, y per node) from the run's first node.
+/// `RUN` doubles (x, y per node) from the run's first node. The run's last node is not
+/// stored: its sum so far (its force with the batch's last element added) is returned, to
+/// be `carried` into the next row batch of the row, whose first node it is, or stored by the
+/// caller ([`Pending`]). A vector load of the run just after a store of that one node
+/// overlaps the store only in part, so the processor cannot forward it and waits for the
+/// store to reach the cache (~15 % of the stiffness product's samples).
 #[inline(always)]
-pub fn add_run(f: &mut [f64], forces: &Vector<Lanes>, run: usize) {
+pub fn add_run(
+    f: &mut [f64],
+    forces: &Vector<Lanes>,
+    run: usize,
+    carried: Option<[f64; 2]>,
+) -> [f64; 2] {
     let f: &mut [f64; RUN] = f.try_into().expect("a run is LANES + 1 nodes");
     // Bottom: node l gets local node 1 of element l - 1 ("left"), then local node 0 of
     // element l ("right"); top: local nodes 2 and 3.
@@ -87,9 +97,30 @@ pub fn add_run(f: &mut [f64], forces: &Vector<Lanes>, run: usize) {
         run
     };
     let (from_left, from_right) = (from(left, 1), from(right, 0));
-    // One pass, left before right on every node: no vector reload of what was just stored.
-    for ((x, l), r) in f.iter_mut().zip(from_left).zip(from_right) {
+    let mut sum = *f;
+    if let Some(carried) = carried {
+        sum[..2].copy_from_slice(&carried);
+    }
+    // One pass, left before right on every node.
+    for ((x, l), r) in sum.iter_mut().zip(from_left).zip(from_right) {
         *x = *x + l + r;
+    }
+    f[..RUN - 2].copy_from_slice(&sum[..RUN - 2]);
+    [sum[RUN - 2], sum[RUN - 1]]
+}
+
+/// The last node of a run (see [`add_run`]) and its force so far, N, not yet stored.
+#[derive(Clone, Copy)]
+pub struct Pending {
+    pub node: usize,
+    pub force: [f64; 2],
+}
+
+impl Pending {
+    /// The force to carry into a run that starts at `first`, when this is its node.
+    #[inline(always)]
+    pub fn carried_to(pending: Option<Pending>, first: usize) -> Option<[f64; 2]> {
+        pending.filter(|p| p.node == first).map(|p| p.force)
     }
 }
 
@@ -119,8 +150,10 @@ mod tests {
             scatter_add(*nodes, &fe, &mut reference);
         }
         let mut f = start;
-        add_run(&mut f[0..RUN], &forces, 0);
-        add_run(&mut f[40..40 + RUN], &forces, 1);
+        let last = add_run(&mut f[0..RUN], &forces, 0, None);
+        f[RUN - 2..RUN].copy_from_slice(&last);
+        let last = add_run(&mut f[40..40 + RUN], &forces, 1, None);
+        f[40 + RUN - 2..40 + RUN].copy_from_slice(&last);
         assert_eq!(f.map_bits(), reference.map_bits());
     }
 

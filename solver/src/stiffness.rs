@@ -2,6 +2,12 @@
 //! `sum_p w_p B_p^T D B_p u_e` (eq. 14) is exactly `K_e u_e` (eq. 13), so the element
 //! stiffness is formed once and applied each step. Elements of identical shape share one
 //! matrix (stored per batch of elements in lanes, each distinct batch once).
+//!
+//! `K_e` kills rigid translations, so `K_e u_e = K_e (u_e - t)` for node 0's translation
+//! `t`: the product is formed on the displacements relative to node 0, whose first two
+//! entries are zero. Their two columns are neither stored nor multiplied (48 of the 64
+//! products), and the energy `u . K u / 2` suffers no cancellation from a large rigid
+//! translation.
 
 use std::convert::Infallible;
 
@@ -13,26 +19,31 @@ use crate::material::Elastic;
 use crate::real::Real;
 use crate::simd::Lanes;
 
+/// Columns of `K_e` stored: all but node 0's two (see the module documentation).
+const STORED: usize = 6;
+
 /// Element stiffness matrices in batches of [`crate::simd::LANES`] elements, column-major
-/// (`[j][i]` is `K_ij`, N/m, in lanes), each distinct batch stored once ([`SharedBatches`]: the
-/// batches of a structured mesh repeat).
+/// without node 0's columns (`[j - 2][i]` is `K_ij`, N/m, in lanes), each distinct batch
+/// stored once ([`SharedBatches`]: the batches of a structured mesh repeat).
 pub struct LinearKernel {
-    matrices: SharedBatches<[Vector<Lanes>; 8]>,
+    matrices: SharedBatches<[Vector<Lanes>; STORED]>,
 }
 
 impl LinearKernel {
     pub fn new<F: Formulation>(formulation: &F, elastic: &Elastic) -> LinearKernel {
-        // Column-major per element.
-        let columns = |e| -> Result<[[f64; 8]; 8], Infallible> {
+        // Column-major per element, columns 2.. (node 0's left out).
+        let columns = |e| -> Result<[[f64; 8]; STORED], Infallible> {
             let k = element_stiffness(formulation, elastic, e);
-            Ok(std::array::from_fn(|j| std::array::from_fn(|i| k[i][j])))
+            Ok(std::array::from_fn(|j| {
+                std::array::from_fn(|i| k[i][j + 2])
+            }))
         };
         let matrices = SharedBatches::new(
             formulation.n_elements(),
             columns,
             |columns, key| key.extend(columns.iter().flatten().map(|x| x.to_bits())),
             |batch| {
-                let mut lanes = [[Lanes::splat(0.0); 8]; 8];
+                let mut lanes = [[Lanes::splat(0.0); 8]; STORED];
                 for (l, columns) in batch.iter().enumerate() {
                     for (j, column) in columns.iter().enumerate() {
                         for (i, &k) in column.iter().enumerate() {
@@ -69,7 +80,8 @@ impl LinearKernel {
     }
 
     /// Internal forces `K_e ue` of `at` (an element for `f64`, a batch for [`Lanes`]) for its
-    /// displacement vector `ue` (m), with the strain and hourglass energies (J).
+    /// displacement vector `ue` (m), with the strain and hourglass energies (J), both formed
+    /// on the displacements relative to node 0.
     #[inline(always)]
     pub fn product<F: Formulation, R: Real>(
         &self,
@@ -77,19 +89,29 @@ impl LinearKernel {
         at: usize,
         ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>) {
+        // Relative to node 0 (its columns would multiply zeros: see the module doc).
+        let (tx, ty) = (ue[0], ue[1]);
+        let mut relative = [R::splat(0.0); STORED];
+        for (j, x) in relative.iter_mut().enumerate() {
+            *x = ue[j + 2] - if j % 2 == 0 { tx } else { ty };
+        }
         // Column by column: each row of `fe` is an independent sum in column order.
         let columns = self.matrices.batch::<R>(at);
         let mut fe = [R::splat(0.0); 8];
-        for (column, &uj) in columns.iter().zip(ue) {
+        for (column, &uj) in columns.iter().zip(&relative) {
             for (f, k) in fe.iter_mut().zip(column) {
                 *f += R::of_batch(k, at) * uj;
             }
         }
         let mut work = R::splat(0.0);
-        for (&f, &u) in fe.iter().zip(ue) {
+        for (&f, &u) in fe.iter().skip(2).zip(&relative) {
             work += f * u;
         }
-        let hourglass = formulation.hourglass_energy(at, ue);
+        let mut hourglass_u = [R::splat(0.0); 8];
+        for (x, &r) in hourglass_u.iter_mut().skip(2).zip(&relative) {
+            *x = r;
+        }
+        let hourglass = formulation.hourglass_energy(at, &hourglass_u);
         let energy = Energy {
             strain: work * 0.5 - hourglass,
             plastic_work: R::splat(0.0),
