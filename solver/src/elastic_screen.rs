@@ -70,8 +70,13 @@ impl ElasticScreen {
         at: usize,
         ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>, R::Mask) {
-        // Relative to node 0, so the energy suffers no cancellation ([`LinearKernel`]).
-        let (f, energy) = self.kernel.product(formulation, at, ue);
+        // K_e kills translations: remove node 0's so the energy suffers no cancellation.
+        let (tx, ty) = (ue[0], ue[1]);
+        let mut relative = *ue;
+        for (i, x) in relative.iter_mut().enumerate() {
+            *x = *x - if i % 2 == 0 { tx } else { ty };
+        }
+        let (f, energy) = self.kernel.screen_product(formulation, at, &relative);
         let limit = R::of_batch(&self.limit[R::batch_of(at)], at);
         let below = limit.gt(energy.strain);
         (f, energy, below)

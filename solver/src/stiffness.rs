@@ -119,6 +119,41 @@ impl LinearKernel {
         };
         (fe, energy)
     }
+
+    /// [`LinearKernel::product`] for the elastic screen, of `relative` (m: displacements
+    /// relative to node 0, its first two entries zero), written as a product over all eight
+    /// columns, the first two (not stored) standing in by columns 2 and 3 times those exact
+    /// zeros: each adds +-0 to a +0 sum, so the bits are `product`'s. Why: this is the shape
+    /// the stress path's kernel was tuned with; with `product`'s shape inlined there (never
+    /// run in it when every point yields), the all-yielding kernel took 31.2 ns instead of
+    /// 29.9 (other registers).
+    #[inline(always)]
+    pub fn screen_product<F: Formulation, R: Real>(
+        &self,
+        formulation: &F,
+        at: usize,
+        relative: &Vector<R>,
+    ) -> (Vector<R>, Energy<R>) {
+        let c = self.matrices.batch::<R>(at);
+        let columns = [&c[0], &c[1], &c[0], &c[1], &c[2], &c[3], &c[4], &c[5]];
+        let mut fe = [R::splat(0.0); 8];
+        for (column, &uj) in columns.iter().zip(relative) {
+            for (f, k) in fe.iter_mut().zip(column.iter()) {
+                *f += R::of_batch(k, at) * uj;
+            }
+        }
+        let mut work = R::splat(0.0);
+        for (&f, &u) in fe.iter().zip(relative) {
+            work += f * u;
+        }
+        let hourglass = formulation.hourglass_energy(at, relative);
+        let energy = Energy {
+            strain: work * 0.5 - hourglass,
+            plastic_work: R::splat(0.0),
+            hourglass,
+        };
+        (fe, energy)
+    }
 }
 
 #[cfg(test)]
@@ -160,5 +195,34 @@ mod tests {
         compare(|m| FullQ4::new(m, 0.2).unwrap());
         compare(|m| SelectiveQ4::new(m, 0.2).unwrap());
         compare(|m| OnePointQ4::new(m, 0.2, 0.05, Elastic::new(207e9, 0.3).p_modulus()).unwrap());
+    }
+
+    /// The screen's eight-column form gives the product's bits: forces and energies, every
+    /// element, with a large rigid translation in the displacements.
+    #[test]
+    fn the_screen_product_has_the_product_bits() {
+        let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);
+        let elastic = Elastic::new(207e9, 0.3);
+        let formulation = OnePointQ4::new(&mesh.mesh, 0.2, 0.05, elastic.p_modulus()).unwrap();
+        let kernel = LinearKernel::new(&formulation, &elastic);
+        let u: Vec<f64> = (0..2 * mesh.mesh.n_nodes())
+            .map(|i| 1e-3 + 1e-5 * ((i as f64 * 0.7).sin() + 0.3 * (i as f64 * 2.3).cos()))
+            .collect();
+        let bits = |(f, en): (ElementVector, ElementEnergy)| {
+            let energies = [en.strain, en.plastic_work, en.hourglass];
+            f.iter()
+                .chain(&energies)
+                .map(|x| x.to_bits())
+                .collect::<Vec<_>>()
+        };
+        for e in 0..formulation.n_elements() {
+            let ue = gather(formulation.nodes(e), &u);
+            let relative: ElementVector = std::array::from_fn(|i| ue[i] - ue[i % 2]);
+            assert_eq!(
+                bits(kernel.product(&formulation, e, &ue)),
+                bits(kernel.screen_product(&formulation, e, &relative)),
+                "element {e}"
+            );
+        }
     }
 }
