@@ -170,7 +170,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
                     virgin = Lanes::and(virgin, material.virgin::<Lanes>(batch, b));
                 }
                 if Lanes::any(virgin) {
-                    let (f, en, below) = screen.product(formulation, b, &ue);
+                    let (f, en, below) = screen.product_in_stress_path(formulation, b, &ue);
                     active = Lanes::and(active, Lanes::not(Lanes::and(virgin, below)));
                     screened = Some((f, en));
                 }
@@ -195,6 +195,58 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
             add_lanes(&mut energy, &en, lanes);
         }
         energy.lane_total()
+    }
+}
+
+/// The elastic screen for a whole chunk, a kernel of its own (its code kept out of the
+/// stress path's, whose registers it changes): when every point of the chunk is virgin and
+/// every element below the screen's bound, the chunk's forces are the screen's `K_e u_e`
+/// (the bits the stress path's screen gives them), scattered, and its energies returned;
+/// otherwise `None`, with nothing scattered and no state touched (the caller runs the stress
+/// path). The checks read the states first, so a chunk with a yielded point costs little.
+pub struct ScreenedChunk<'a, F: Formulation, M: ConstitutiveModel> {
+    pub screen: &'a ElasticScreen,
+    pub formulation: &'a F,
+    pub material: &'a M,
+    /// Nodal displacements, m.
+    pub u: &'a [f64],
+    pub elements: Range<usize>,
+    pub forces: &'a mut [BatchForces],
+    /// The chunk's material states, `POINTS` batches per batch of elements.
+    pub states: &'a [M::Batch],
+    /// Where the forces go, once computed.
+    pub scatter: &'a Scatter<'a>,
+}
+
+impl<F: Formulation, M: ConstitutiveModel> Kernel for ScreenedChunk<'_, F, M> {
+    type Output = Option<ElementEnergy>;
+    #[inline(always)]
+    fn run(self) -> Option<ElementEnergy> {
+        let (formulation, first, n) = (self.formulation, self.elements.start, self.elements.len());
+        let batches = || (0..n).step_by(LANES).map(|k0| (k0, (n - k0).min(LANES)));
+        for (k0, lanes) in batches() {
+            let mut virgin = Mask::first(lanes);
+            for batch in &self.states[k0 / LANES * F::POINTS..][..F::POINTS] {
+                let b = (first + k0) / LANES;
+                virgin = Lanes::and(virgin, self.material.virgin::<Lanes>(batch, b));
+            }
+            if Lanes::any(Lanes::and(Mask::first(lanes), Lanes::not(virgin))) {
+                return None;
+            }
+        }
+        let mut energy = Energy::<Lanes>::default();
+        for ((k0, lanes), batch_forces) in batches().zip(&mut *self.forces) {
+            let ue = gather_lanes(formulation, first + k0, lanes, self.u);
+            let (f, en, below) = self.screen.product(formulation, (first + k0) / LANES, &ue);
+            if Lanes::any(Lanes::and(Mask::first(lanes), Lanes::not(below))) {
+                return None;
+            }
+            *batch_forces = f;
+            add_lanes(&mut energy, &en, lanes);
+        }
+        let nodes = |e| formulation.nodes(e);
+        self.scatter.chunk(self.elements, self.forces, nodes);
+        Some(energy.lane_total())
     }
 }
 

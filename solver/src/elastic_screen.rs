@@ -11,6 +11,9 @@
 //! (6 mu)`, every `q_p^2 < sigma_y^2`: the radial return would take its elastic branch at
 //! every point and leave the state unchanged, and `K_e u_e` is its force up to round-off.
 
+use std::sync::atomic::{AtomicU8, Ordering};
+
+use crate::assembly::CHUNK;
 use crate::element::{ElementEnergy, ElementVector, Energy, Formulation};
 use crate::geometry::Vector;
 use crate::heap::vec_bytes;
@@ -31,7 +34,19 @@ pub struct ElasticScreen {
     /// Per batch of [`LANES`] elements, in lanes: `SAFETY w_min sigma_y^2 / (6 mu)`, J (0 in
     /// the missing lanes of a partial batch: nothing is below it).
     limit: Vec<Lanes>,
+    /// Per chunk of [`CHUNK`] elements: calls left before the screen is tried on the whole
+    /// chunk again ([`ElasticScreen::try_whole`]).
+    skips: Vec<Skips>,
 }
+
+/// A chunk's skips, alone in its cache line (chunks next to each other may be run by
+/// different threads: no line written by both).
+#[repr(align(64))]
+struct Skips(AtomicU8);
+
+/// Calls a chunk skips the whole-chunk screen after it failed there (an element above the
+/// bound, a yielded point): the failed try's products are redone by the stress path.
+const SKIPS_AFTER_A_FAILURE: u8 = 8;
 
 impl ElasticScreen {
     /// The screen of `formulation` for `material`, `None` when the material never yields.
@@ -51,12 +66,35 @@ impl ElasticScreen {
         Some(ElasticScreen {
             kernel: LinearKernel::new(formulation, elastic),
             limit,
+            skips: (0..formulation.n_elements().div_ceil(CHUNK))
+                .map(|_| Skips(AtomicU8::new(0)))
+                .collect(),
         })
     }
 
-    /// Heap bytes of the matrices and the limits.
+    /// Heap bytes of the matrices, the limits and the chunks' skips.
     pub fn heap_bytes(&self) -> usize {
-        self.kernel.heap_bytes() + vec_bytes(&self.limit)
+        self.kernel.heap_bytes() + vec_bytes(&self.limit) + vec_bytes(&self.skips)
+    }
+
+    /// Runs `whole` (the screen on the whole chunk that starts at element `first`: `None`
+    /// when it fails) unless the chunk failed there within the last
+    /// [`SKIPS_AFTER_A_FAILURE`] calls. Which path a chunk takes changes no bit (the screen
+    /// gives the same forces either way), so this is no source of nondeterminism; a chunk is
+    /// only ever run by one thread at a time.
+    #[inline]
+    pub fn try_whole<T>(&self, first: usize, whole: impl FnOnce() -> Option<T>) -> Option<T> {
+        let skips = &self.skips[first / CHUNK].0;
+        let left = skips.load(Ordering::Relaxed);
+        if left > 0 {
+            skips.store(left - 1, Ordering::Relaxed);
+            return None;
+        }
+        let result = whole();
+        if result.is_none() {
+            skips.store(SKIPS_AFTER_A_FAILURE, Ordering::Relaxed);
+        }
+        result
     }
 
     /// `K_e u_e` of `at` (an element, or a batch in lanes) at its displacements `ue` (m):
@@ -70,6 +108,19 @@ impl ElasticScreen {
         at: usize,
         ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>, R::Mask) {
+        let (f, energy) = self.kernel.product(formulation, at, ue);
+        (f, energy, self.below(at, &energy))
+    }
+
+    /// [`ElasticScreen::product`] in the form the stress path's kernel inlines
+    /// ([`LinearKernel::screen_product`]; the same bits).
+    #[inline(always)]
+    pub fn product_in_stress_path<F: Formulation, R: Real>(
+        &self,
+        formulation: &F,
+        at: usize,
+        ue: &Vector<R>,
+    ) -> (Vector<R>, Energy<R>, R::Mask) {
         // K_e kills translations: remove node 0's so the energy suffers no cancellation.
         let (tx, ty) = (ue[0], ue[1]);
         let mut relative = *ue;
@@ -77,9 +128,13 @@ impl ElasticScreen {
             *x = *x - if i % 2 == 0 { tx } else { ty };
         }
         let (f, energy) = self.kernel.screen_product(formulation, at, &relative);
-        let limit = R::of_batch(&self.limit[R::batch_of(at)], at);
-        let below = limit.gt(energy.strain);
-        (f, energy, below)
+        (f, energy, self.below(at, &energy))
+    }
+
+    /// The lanes of `at` whose strain energy is below the bound.
+    #[inline(always)]
+    fn below<R: Real>(&self, at: usize, energy: &Energy<R>) -> R::Mask {
+        R::of_batch(&self.limit[R::batch_of(at)], at).gt(energy.strain)
     }
 
     /// Forces and energies of element `e` at its displacements `ue` (m) by `K_e u_e` when

@@ -93,6 +93,23 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 states,
                 F::POINTS,
                 |elements, forces, states, scatter| {
+                    // A chunk that never yielded and stays elastic: its screen alone.
+                    if let Some(screen) = screen {
+                        let whole = batch::ScreenedChunk {
+                            screen,
+                            formulation,
+                            material,
+                            u,
+                            elements: elements.clone(),
+                            forces: &mut *forces,
+                            states: &*states,
+                            scatter,
+                        };
+                        let first = whole.elements.start;
+                        if let Some(energy) = screen.try_whole(first, || dispatch(isa, whole)) {
+                            return energy;
+                        }
+                    }
                     let chunk = batch::StressPathChunk {
                         formulation,
                         material,
