@@ -17,9 +17,11 @@
 //! - The stress path: [`crate::element::response`] in lanes (strains, material update with
 //!   the masked radial return, forces and hourglass), the scalar path's kernels instantiated
 //!   with [`Lanes`], on each formulation's batch of geometry.
-//! - The elastic screen of a plastic scene: `K_e u_e` in lanes for the whole batch; lanes the
-//!   screen proves elastic (virgin at every point and below its bound) take it, the others the
-//!   stress path (the screened lanes' states are not written), chosen per lane.
+//! - The elastic screen of a plastic scene: a chunk whose every point is virgin and every
+//!   element below the screen's bound is done by the screen alone ([`ScreenedChunk`], its own
+//!   kernel, the forces scattered in it); in another chunk, `K_e u_e` in lanes for each batch
+//!   with a virgin lane: lanes the screen proves elastic take it, the others the stress path
+//!   (the screened lanes' states are not written), chosen per lane.
 //! - The stiffness product `K_e u_e` ([`LinearChunk`]) in lanes, over the batch's matrices
 //!   stored in lanes ([`LinearKernel`]).
 //!
@@ -29,11 +31,12 @@
 //! FMA when multiplies and adds are balanced): a q4-sri element-step with radial return at
 //! four points is ~660 flops (counted from the kernels), with 4 divisions and 4 square roots
 //! per element left after divisions by constants became products (see [`crate::real`]); the
-//! stiffness product is ~150. Measured (2026-11-25, 1 thread, 80 x 16, `impact-bench
-//! throughput`): 29.5 ns and 7.4 ns, 22 and 20 GFLOP/s, about half of that peak. In the
-//! profiles (perf, cpu-clock samples) the rest is register spills and reloads (~12 % of the
-//! yielding kernel), the latency of each point's square root and division (~9 %), and the
-//! row scatter (~20 % of the stiffness product's time).
+//! stiffness product is ~115 (48 products and sums: node 0's two columns are skipped).
+//! Measured (2026-11-25, 1 thread, 80 x 16, `impact-bench throughput`): 29.9 ns and 5.8 ns,
+//! 22 and 20 GFLOP/s, about half of that peak. In the profiles (perf, cpu-clock samples) the
+//! rest is register spills and reloads (~12 % of the yielding kernel), the latency of each
+//! point's square root and division (~9 %), and the row scatter (~20 % of the stiffness
+//! product's time).
 
 use std::ops::Range;
 
