@@ -112,12 +112,7 @@ impl LinearKernel {
             *x = r;
         }
         let hourglass = formulation.hourglass_energy(at, &hourglass_u);
-        let energy = Energy {
-            strain: work * 0.5 - hourglass,
-            plastic_work: R::splat(0.0),
-            hourglass,
-        };
-        (fe, energy)
+        (fe, energies(work, hourglass))
     }
 
     /// [`LinearKernel::product`] for the elastic screen, of `relative` (m: displacements
@@ -147,12 +142,17 @@ impl LinearKernel {
             work += f * u;
         }
         let hourglass = formulation.hourglass_energy(at, relative);
-        let energy = Energy {
-            strain: work * 0.5 - hourglass,
-            plastic_work: R::splat(0.0),
-            hourglass,
-        };
-        (fe, energy)
+        (fe, energies(work, hourglass))
+    }
+}
+
+/// The energies (J) of a stiffness product: `work = u . K u` less the `hourglass` energy.
+#[inline(always)]
+fn energies<R: Real>(work: R, hourglass: R) -> Energy<R> {
+    Energy {
+        strain: work * 0.5 - hourglass,
+        plastic_work: R::splat(0.0),
+        hourglass,
     }
 }
 
@@ -172,7 +172,8 @@ mod tests {
         let mut linear =
             PlateModel::new(make(&mesh.mesh), elastic, &mesh, 7850.0).with_linear_kernel(&elastic);
         // Batches are shared only when every matrix entry has the same bits: at most one
-        // per batch of 8 elements (48 elements: 6 batches; this graded mesh shares none).
+        // per batch of 8 elements (48 elements: 6 batches; on this graded mesh the rows
+        // repeat, but the batches straddle them).
         let n = linear.linear.as_ref().unwrap().n_matrices();
         assert!((1..=6).contains(&n), "{n} distinct batches of matrices");
         // A deterministic, non-smooth displacement field (it excites hourglass modes).
