@@ -134,6 +134,28 @@ fn add_lanes(partial: &mut Energy<Lanes>, energy: &Energy<Lanes>, lanes: usize) 
     }
 }
 
+/// The lanes of `lanes` (a mask) whose points have all never yielded: `point_states`, one
+/// batch of states per point of batch `b`.
+#[inline(always)]
+fn virgin_lanes<M: ConstitutiveModel>(
+    material: &M,
+    point_states: &[M::Batch],
+    b: usize,
+    lanes: Mask,
+) -> Mask {
+    let mut virgin = lanes;
+    for batch in point_states {
+        virgin = Lanes::and(virgin, material.virgin::<Lanes>(batch, b));
+    }
+    virgin
+}
+
+/// Whether `mask` holds each of the first `lanes` lanes.
+#[inline(always)]
+fn every_lane(mask: Mask, lanes: usize) -> bool {
+    !Lanes::any(Lanes::and(Mask::first(lanes), Lanes::not(mask)))
+}
+
 /// The stress-path chunk kernel in batches (the elastic `screen` first where there is one):
 /// forces of the chunk's `elements` into their batches `forces`, their states updated, the
 /// chunk's energies summed per lane ([`Energy::lane_total`]).
@@ -168,10 +190,8 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
             // compiled for it (its code changed the elastic stress path's registers).
             let can_yield = std::mem::size_of::<M::Batch>() > 0;
             if let Some(screen) = self.screen.filter(|_| can_yield) {
-                let mut virgin = active;
-                for batch in &states[k0 / LANES * F::POINTS..][..F::POINTS] {
-                    virgin = Lanes::and(virgin, material.virgin::<Lanes>(batch, b));
-                }
+                let point_states = &states[k0 / LANES * F::POINTS..][..F::POINTS];
+                let virgin = virgin_lanes(material, point_states, b, active);
                 if Lanes::any(virgin) {
                     let (f, en, below) = screen.product_in_stress_path(formulation, b, &ue);
                     active = Lanes::and(active, Lanes::not(Lanes::and(virgin, below)));
@@ -228,12 +248,10 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for ScreenedChunk<'_, F, M> {
         let (formulation, first, n) = (self.formulation, self.elements.start, self.elements.len());
         let batches = || (0..n).step_by(LANES).map(|k0| (k0, (n - k0).min(LANES)));
         for (k0, lanes) in batches() {
-            let mut virgin = Mask::first(lanes);
-            for batch in &self.states[k0 / LANES * F::POINTS..][..F::POINTS] {
-                let b = (first + k0) / LANES;
-                virgin = Lanes::and(virgin, self.material.virgin::<Lanes>(batch, b));
-            }
-            if Lanes::any(Lanes::and(Mask::first(lanes), Lanes::not(virgin))) {
+            let point_states = &self.states[k0 / LANES * F::POINTS..][..F::POINTS];
+            let b = (first + k0) / LANES;
+            let virgin = virgin_lanes(self.material, point_states, b, Mask::first(lanes));
+            if !every_lane(virgin, lanes) {
                 return None;
             }
         }
@@ -241,7 +259,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for ScreenedChunk<'_, F, M> {
         for ((k0, lanes), batch_forces) in batches().zip(&mut *self.forces) {
             let ue = gather_lanes(formulation, first + k0, lanes, self.u);
             let (f, en, below) = self.screen.product(formulation, (first + k0) / LANES, &ue);
-            if Lanes::any(Lanes::and(Mask::first(lanes), Lanes::not(below))) {
+            if !every_lane(below, lanes) {
                 return None;
             }
             *batch_forces = f;

@@ -105,7 +105,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                             states: &*states,
                             scatter,
                         };
-                        let first = whole.elements.start;
+                        let first = elements.start;
                         if let Some(energy) = screen.try_whole(first, || dispatch(isa, whole)) {
                             return energy;
                         }
