@@ -350,6 +350,10 @@ mod tests {
         for e in (0..80 * 16).filter(|e| e % 80 != 79 && e / 80 != 15) {
             assert_eq!(relative(e), first, "element {e}");
         }
+        // The grid of the 0.2 m plate: the spacing of doubles in [0.125, 0.25). Its worst
+        // case, half a step, is 1.1e-14 of these 1.25 mm sizes; measured 8.7e-16 (the
+        // quotient's own rounding): 1e-14 is about 10x that, and a coarser grid fails.
+        assert_eq!(station_grid(&PLATE), 2f64.powi(-55));
         assert!((first[2][0] - 0.1 / 80.0).abs() < 1e-14 * 0.1 / 80.0);
         assert!((first[2][1] - 0.02 / 16.0).abs() < 1e-14 * 0.02 / 16.0);
         let mut x = 0.0;
