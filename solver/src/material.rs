@@ -467,15 +467,26 @@ impl VonMises {
 /// solver's unit tests.
 #[cfg(test)]
 pub(crate) fn test_von_mises() -> VonMises {
+    von_mises_steel(
+        207e9,
+        176e6,
+        Hardening::Linear {
+            tangent_modulus: 1e9,
+        },
+    )
+}
+
+/// Von Mises steel (7850 kg/m^3, nu = 0.3) of Young's modulus `youngs_modulus` and yield
+/// stress `yield_stress` (Pa) with `hardening`.
+#[cfg(test)]
+fn von_mises_steel(youngs_modulus: f64, yield_stress: f64, hardening: Hardening) -> VonMises {
     VonMises::new(&MaterialSpec {
         density: 7850.0,
-        youngs_modulus: 207e9,
+        youngs_modulus,
         poisson_ratio: 0.3,
         plasticity: Some(crate::scene::Plasticity {
-            yield_stress: 176e6,
-            hardening: Hardening::Linear {
-                tangent_modulus: 1e9,
-            },
+            yield_stress,
+            hardening,
         }),
     })
     .expect("a material with plasticity")
@@ -498,16 +509,7 @@ mod tests {
     }
 
     fn steel(hardening: Hardening) -> VonMises {
-        VonMises::new(&MaterialSpec {
-            density: 7850.0,
-            youngs_modulus: 200e9,
-            poisson_ratio: 0.3,
-            plasticity: Some(crate::scene::Plasticity {
-                yield_stress: 250e6,
-                hardening,
-            }),
-        })
-        .unwrap()
+        von_mises_steel(200e9, 250e6, hardening)
     }
 
     /// Uniaxial strain eps_xx = e (all other strains 0). Closed form: elastic until
