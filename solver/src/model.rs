@@ -61,10 +61,10 @@ pub enum Kernel {
     Solver,
     /// Elastic, by the faster path of the element ([`Formulation::STIFFNESS_MATRIX_PAYS`]):
     /// precomputed element stiffness matrices for q4-full and q4-sri, the stresses for
-    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, 2026-11-25,
-    /// min of 4 interleaved: q4-1pt 7.0-7.2 ns through the stresses against 8.1-8.3 ns
-    /// through `K_e u_e`, whose one-point hourglass energy costs a second pass; q4-sri 7.3 ns
-    /// through `K_e u_e` against 15.9 ns).
+    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, three runs
+    /// of 2026-11-25 after the six-column product: q4-1pt 6.3-6.5 ns through the stresses
+    /// against 6.4-6.6 ns through `K_e u_e`, whose one-point hourglass energy costs a second
+    /// pass, a tie within noise; q4-sri 5.8-6.0 ns through `K_e u_e` against 18.4 ns).
     Elastic,
     /// Elastic, always with precomputed element stiffness matrices.
     ElasticStiffnessMatrix,
