@@ -136,7 +136,12 @@ impl<N: Fn(usize) -> [u32; 4]> Kernel for ScatterChunk<'_, N> {
     }
 }
 
-impl Scatter<'_> {
+impl<'a> Scatter<'a> {
+    /// The mesh's row batches (for the kernels' gathers: [`RowBatches::runs`]).
+    pub fn rows(&self) -> &'a RowBatches {
+        self.rows
+    }
+
     /// Scatters the forces `forces` of the chunk's `elements` (`nodes(e)`: element `e`'s
     /// nodes), in element order: a row batch at once ([`add_run`]; the last node of each of
     /// its runs kept in a register for the next row batch of the row, [`Pending`]), the
@@ -151,7 +156,7 @@ impl Scatter<'_> {
         let mut pending: [Option<Pending>; 2] = [None; 2];
         for (k0, batch) in (0..elements.len()).step_by(LANES).zip(forces) {
             let e0 = elements.start + k0;
-            if let Some(runs) = self.rows.runs(e0 / LANES) {
+            if let Some(runs) = self.rows.scatter_runs(e0 / LANES) {
                 // Every pending node the batch does not continue is stored first: it may be
                 // a node of the batch's other run (a row one batch wide).
                 let carried = [0, 1].map(|run| Pending::carried_to(pending[run], runs[run]));
@@ -529,7 +534,7 @@ mod tests {
             let reference: Vec<u64> = reference.iter().map(|x| x.to_bits()).collect();
             let rows = RowBatches::new(&conn, |_| false);
             let row_batches = (0..conn.len() / LANES)
-                .filter(|&b| rows.runs(b).is_some())
+                .filter(|&b| rows.scatter_runs(b).is_some())
                 .count();
             let every = row_batches == conn.len() / LANES;
             assert!(row_batches > 0 && every == (nx % 8 == 0), "{nx} x {ny}");

@@ -46,7 +46,7 @@ use crate::element::{response, ElementEnergy, Energy, Formulation};
 use crate::geometry::Vector;
 use crate::material::ConstitutiveModel;
 use crate::real::Real;
-use crate::row_batches::row_of;
+use crate::row_batches::RowBatches;
 use crate::simd::{each_lane, Kernel, Lanes, Mask, LANES};
 use crate::stiffness::LinearKernel;
 
@@ -59,12 +59,13 @@ const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
 #[inline(always)]
 fn gather_lanes<F: Formulation>(
     formulation: &F,
+    rows: &RowBatches,
     e0: usize,
     lanes: usize,
     u: &[f64],
 ) -> Vector<Lanes> {
     if lanes == LANES {
-        if let Some(ue) = row_lanes(formulation, e0, u) {
+        if let Some(ue) = rows.runs(e0 / LANES).and_then(|runs| row_lanes(runs, u)) {
             return ue;
         }
     }
@@ -91,17 +92,14 @@ fn gather_lanes<F: Formulation>(
     ue
 }
 
-/// [`gather_lanes`] of a full batch from `e0` that lies in one row of a structured mesh
-/// (element `l`'s nodes are `[b + l, b + l + 1, t + l + 1, t + l]`; see
-/// [`crate::row_batches`]): each of its two runs of nodes is one contiguous slice of `u`,
-/// loaded whole and split into lanes by shuffles instead of eight gathers. `None` for
-/// another batch. The test reads the connectivity directly (not through an index array
-/// written to the stack, whose vector reload waited on the stores: ~15 % of the elastic
-/// kernel's samples).
+/// [`gather_lanes`] of a full batch that lies in one row of a structured mesh, its two
+/// `runs` of nodes from their first (element `l`'s nodes are `[b + l, b + l + 1, t + l + 1,
+/// t + l]`; see [`crate::row_batches`]): each run is one contiguous slice of `u`, loaded
+/// whole and split into lanes by shuffles instead of eight gathers. `None` if a run is not
+/// in `u`.
 #[inline(always)]
-fn row_lanes<F: Formulation>(formulation: &F, e0: usize, u: &[f64]) -> Option<Vector<Lanes>> {
-    let [b, t] = row_of(|e| formulation.nodes(e), e0)?;
-    let (b, t) = (2 * b as usize, 2 * t as usize);
+fn row_lanes([b, t]: [usize; 2], u: &[f64]) -> Option<Vector<Lanes>> {
+    let (b, t) = (2 * b, 2 * t);
     const RUN: usize = 2 * (LANES + 1);
     let bottom: &[f64; RUN] = u.get(b..b + RUN)?.try_into().ok()?;
     let top: &[f64; RUN] = u.get(t..t + RUN)?.try_into().ok()?;
@@ -163,6 +161,8 @@ pub struct StressPathChunk<'a, F: Formulation, M: ConstitutiveModel> {
     pub formulation: &'a F,
     pub material: &'a M,
     pub screen: Option<&'a ElasticScreen>,
+    /// The mesh's row batches (for the gathers).
+    pub rows: &'a RowBatches,
     /// Nodal displacements, m.
     pub u: &'a [f64],
     pub elements: Range<usize>,
@@ -181,7 +181,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
         for (k0, batch_forces) in (0..self.elements.len()).step_by(LANES).zip(forces) {
             let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
             let b = e0 / LANES;
-            let ue = gather_lanes(formulation, e0, lanes, u);
+            let ue = gather_lanes(formulation, self.rows, e0, lanes, u);
             let mut active = Mask::first(lanes);
             // The screened lanes: virgin (every point) and below the screen's bound.
             // (No product when no lane is virgin: yielded elements never take it.)
@@ -257,7 +257,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for ScreenedChunk<'_, F, M> {
         }
         let mut energy = Energy::<Lanes>::default();
         for ((k0, lanes), batch_forces) in batches().zip(&mut *self.forces) {
-            let ue = gather_lanes(formulation, first + k0, lanes, self.u);
+            let ue = gather_lanes(formulation, self.scatter.rows(), first + k0, lanes, self.u);
             let (f, en, below) = self.screen.product(formulation, (first + k0) / LANES, &ue);
             if !every_lane(below, lanes) {
                 return None;
@@ -294,7 +294,7 @@ impl<F: Formulation> Kernel for LinearChunk<'_, F> {
             .zip(&mut *self.forces)
         {
             let (e0, lanes) = (first + k0, (self.elements.len() - k0).min(LANES));
-            let ue = gather_lanes(formulation, e0, lanes, u);
+            let ue = gather_lanes(formulation, self.scatter.rows(), e0, lanes, u);
             let (f, en) = self.kernel.product(formulation, e0 / LANES, &ue);
             *batch_forces = f;
             add_lanes(&mut energy, &en, lanes);

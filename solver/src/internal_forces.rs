@@ -114,6 +114,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                         formulation,
                         material,
                         screen,
+                        rows: scatter.rows(),
                         u,
                         elements: elements.clone(),
                         forces,
