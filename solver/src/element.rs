@@ -10,6 +10,7 @@
 //! counter-clockwise. Every element has out-of-plane thickness `W` (the plate width), so
 //! forces are N and volumes m^3 for the whole width.
 
+use crate::centroid::CentroidGeometry;
 use crate::error::{Error, Result};
 use crate::geometry::{PointGeometry, SharedBatches, Vector, NODE_XI};
 use crate::heap::vec_bytes;
@@ -292,10 +293,23 @@ fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
     Ok(g)
 }
 
-/// Centroid derivatives with the element's exact area (sum of the 2x2 det J), m^2.
-fn centroid_geometry(mesh: &Mesh, e: usize) -> Result<(PointGeometry<f64>, f64)> {
+/// Centroid derivatives (all four nodes', and [`CentroidGeometry`]'s two) with the element's
+/// exact area (sum of the 2x2 det J), m^2.
+fn centroid_geometry(
+    mesh: &Mesh,
+    e: usize,
+) -> Result<(PointGeometry<f64>, CentroidGeometry<f64>, f64)> {
     let area = gauss_geometry(mesh, e)?.iter().map(|g| g.det_j).sum();
-    Ok((PointGeometry::at(&shape_coords(mesh, e), [0.0, 0.0]), area))
+    let point = PointGeometry::at(&shape_coords(mesh, e), [0.0, 0.0]);
+    let centroid = CentroidGeometry::of(&point).ok_or_else(|| Error::Run {
+        step: 0,
+        time_s: 0.0,
+        what: format!(
+            "element {e} (nodes {:?}): its centroid derivatives are not finite",
+            mesh.elements[e]
+        ),
+    })?;
+    Ok((point, centroid, area))
 }
 
 /// 2x2 Gauss quadrature of the plain displacement-based element.
@@ -375,7 +389,7 @@ impl Formulation for FullQ4 {
 /// Selective-reduced integration (B-bar): 2x2 deviatoric, centroid volumetric.
 pub struct SelectiveQ4 {
     full: FullQ4,
-    centroid: SharedBatches<PointGeometry<Lanes>>,
+    centroid: SharedBatches<CentroidGeometry<Lanes>>,
 }
 
 impl SelectiveQ4 {
@@ -384,9 +398,9 @@ impl SelectiveQ4 {
             full: FullQ4::new(mesh, width)?,
             centroid: SharedBatches::new(
                 mesh.elements.len(),
-                |e| centroid_geometry(mesh, e).map(|c| c.0),
-                PointGeometry::bits,
-                PointGeometry::lanes,
+                |e| centroid_geometry(mesh, e).map(|c| c.1),
+                CentroidGeometry::bits,
+                CentroidGeometry::lanes,
             )?,
         })
     }
@@ -440,18 +454,9 @@ impl Formulation for SelectiveQ4 {
     /// The points' weighted mean stress at the centroid.
     #[inline(always)]
     fn finish_forces<R: Real>(&self, at: usize, mean_total: R, f: &mut Vector<R>) {
-        let c = self.centroid.batch::<R>(at);
-        // The products first, then the sums: written as one loop, LLVM vectorised it across
-        // the nodes (4-wide, with a transpose and 16 gathers and scatters per batch: ~20 %
-        // of the all-yielding kernel's samples) instead of across the lanes.
-        let mut add: Vector<R> = [R::splat(0.0); 8];
-        for a in 0..4 {
-            add[2 * a] = mean_total * c.dndx::<R>(a, at);
-            add[2 * a + 1] = mean_total * c.dndy::<R>(a, at);
-        }
-        for (x, add) in f.iter_mut().zip(add) {
-            *x += add;
-        }
+        self.centroid
+            .batch::<R>(at)
+            .add_gradients(at, mean_total, f);
     }
     fn volume(&self, e: usize) -> f64 {
         self.full.volume(e)
@@ -471,7 +476,7 @@ pub struct OnePointQ4 {
 /// [`OnePointQ4`]'s data of [`Real::LANES`] elements.
 #[derive(Debug, Clone, Copy, Default)]
 struct OnePoint<R> {
-    centroid: PointGeometry<R>,
+    centroid: CentroidGeometry<R>,
     /// Element volume, m^3.
     volume: R,
     /// Hourglass base vectors gamma_a (dimensionless).
@@ -495,9 +500,9 @@ impl OnePoint<f64> {
     }
 
     fn lanes(elements: &[OnePoint<f64>]) -> OnePoint<Lanes> {
-        let centroids: Vec<PointGeometry<f64>> = elements.iter().map(|d| d.centroid).collect();
+        let centroids: Vec<CentroidGeometry<f64>> = elements.iter().map(|d| d.centroid).collect();
         let mut g = OnePoint {
-            centroid: PointGeometry::lanes(&centroids),
+            centroid: CentroidGeometry::lanes(&centroids),
             ..Default::default()
         };
         for (l, d) in elements.iter().enumerate() {
@@ -515,13 +520,13 @@ impl OnePointQ4 {
     /// `kappa`: hourglass coefficient; `p_modulus`: lambda + 2 mu, Pa.
     pub fn new(mesh: &Mesh, width: f64, kappa: f64, p_modulus: f64) -> Result<OnePointQ4> {
         let element = |e| {
-            let (c, area) = centroid_geometry(mesh, e)?;
+            let (c, centroid, area) = centroid_geometry(mesh, e)?;
             let xy = shape_coords(mesh, e);
             let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
             let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
             let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
             Ok(OnePoint {
-                centroid: c,
+                centroid,
                 volume: area * width,
                 gamma: std::array::from_fn(|a| {
                     0.25 * (HOURGLASS_H[a] - hx * c.dndx[a] - hy * c.dndy[a])

@@ -11,6 +11,7 @@
 pub mod assembly;
 pub mod batch;
 pub mod budget;
+pub mod centroid;
 pub mod contact;
 pub mod contact_failure;
 pub mod elastic_screen;
