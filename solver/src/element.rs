@@ -200,7 +200,10 @@ pub fn response<F: Formulation, M: ConstitutiveModel, R: Real>(
         let strain = formulation.strain(at, p, u, shared);
         let r = material.update(&strain, batch, at, active);
         energy.strain += w[p] * r.strain_energy_density;
-        energy.plastic_work += w[p] * r.plastic_work_density;
+        // (A material without states does no plastic work: +0 stays +0.)
+        if std::mem::size_of::<M::Batch>() > 0 {
+            energy.plastic_work += w[p] * r.plastic_work_density;
+        }
         formulation.add_point_forces(at, p, &r.stress, &mut f, &mut acc);
     }
     formulation.finish_forces(at, acc, &mut f);
@@ -476,7 +479,10 @@ pub struct OnePointQ4 {
 /// [`OnePointQ4`]'s data of [`Real::LANES`] elements.
 #[derive(Debug, Clone, Copy, Default)]
 struct OnePoint<R> {
+    /// The derivatives at the centroid, 1/m, for the strain.
     centroid: CentroidGeometry<R>,
+    /// The same times the volume, m^2, for the forces `w B^T s`.
+    weighted: CentroidGeometry<R>,
     /// Element volume, m^3.
     volume: R,
     /// Hourglass base vectors gamma_a (dimensionless).
@@ -491,6 +497,7 @@ const CENTROID_XI: [[f64; 2]; 1] = [[0.0, 0.0]];
 impl OnePoint<f64> {
     fn bits(&self, key: &mut Vec<u64>) {
         self.centroid.bits(key);
+        self.weighted.bits(key);
         key.extend(
             [self.volume, self.stiffness]
                 .iter()
@@ -500,9 +507,12 @@ impl OnePoint<f64> {
     }
 
     fn lanes(elements: &[OnePoint<f64>]) -> OnePoint<Lanes> {
-        let centroids: Vec<CentroidGeometry<f64>> = elements.iter().map(|d| d.centroid).collect();
+        let lanes = |of: fn(&OnePoint<f64>) -> CentroidGeometry<f64>| {
+            CentroidGeometry::lanes(&elements.iter().map(of).collect::<Vec<_>>())
+        };
         let mut g = OnePoint {
-            centroid: CentroidGeometry::lanes(&centroids),
+            centroid: lanes(|d| d.centroid),
+            weighted: lanes(|d| d.weighted),
             ..Default::default()
         };
         for (l, d) in elements.iter().enumerate() {
@@ -525,9 +535,11 @@ impl OnePointQ4 {
             let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
             let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
             let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
+            let volume = area * width;
             Ok(OnePoint {
                 centroid,
-                volume: area * width,
+                weighted: centroid.scaled(volume),
+                volume,
                 gamma: std::array::from_fn(|a| {
                     0.25 * (HOURGLASS_H[a] - hx * c.dndx[a] - hy * c.dndy[a])
                 }),
@@ -593,9 +605,7 @@ impl Formulation for OnePointQ4 {
         f: &mut Vector<R>,
         _: &mut R,
     ) {
-        let d = self.data.batch::<R>(at);
-        d.centroid
-            .add_divergence(at, R::of_batch(&d.volume, at), s, f);
+        self.data.batch::<R>(at).weighted.add_transpose(at, s, f);
     }
     #[inline(always)]
     fn add_hourglass<R: Real>(&self, at: usize, u: &Vector<R>, f: &mut Vector<R>) -> R {
