@@ -31,12 +31,15 @@
 //! FMA when multiplies and adds are balanced): a q4-sri element-step with radial return at
 //! four points is ~660 flops (counted from the kernels), with 4 divisions and 4 square roots
 //! per element left after divisions by constants became products (see [`crate::real`]); the
-//! stiffness product is ~115 (48 products and sums: node 0's two columns are skipped).
-//! Measured (2026-11-25, 1 thread, 80 x 16, `impact-bench throughput`): 29.9 ns and 5.8 ns,
-//! 22 and 20 GFLOP/s, about half of that peak. In the profiles (perf, cpu-clock samples) the
-//! rest is register spills and reloads (~12 % of the yielding kernel), the latency of each
-//! point's square root and division (~9 %), and the row scatter (~20 % of the stiffness
-//! product's time).
+//! stiffness product is ~115 (48 products and sums: node 0's two columns are skipped); the
+//! one-point elastic stress path ~110 (49 products, 62 sums and differences per batch in its
+//! loop, half of them the hourglass control's).
+//! Measured (2026-11-25, 1 thread, 80 x 16, `impact-bench throughput`): 29.3 ns, 5.1-5.3 ns
+//! and 4.7 ns, 22.5, 22 and 23 GFLOP/s, about half of that peak. In the profiles (perf,
+//! cpu-clock samples) the rest is register spills and reloads (~12 % of the yielding
+//! kernel), the latency of each point's square root and division (~9 %), and the row scatter
+//! (~20 % of the stiffness product's time, ~30 % of the one-point stress path's, which
+//! scatters in a kernel of its own).
 
 use std::ops::Range;
 

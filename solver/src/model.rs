@@ -61,10 +61,11 @@ pub enum Kernel {
     Solver,
     /// Elastic, by the faster path of the element ([`Formulation::STIFFNESS_MATRIX_PAYS`]):
     /// precomputed element stiffness matrices for q4-full and q4-sri, the stresses for
-    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, three runs
-    /// of 2026-11-25 after the six-column product: q4-1pt 6.3-6.5 ns through the stresses
-    /// against 6.4-6.6 ns through `K_e u_e`, whose one-point hourglass energy costs a second
-    /// pass, a tie within noise; q4-sri 5.8-6.0 ns through `K_e u_e` against 18.4 ns).
+    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, two runs of
+    /// 2026-11-25 after the one-point element took Flanagan and Belytschko's centroid form:
+    /// q4-1pt 4.7 ns through the stresses against 5.7 ns through `K_e u_e`, whose one-point
+    /// hourglass energy costs a second pass; q4-sri 5.1-5.3 ns through `K_e u_e` against 17.1-17.4
+    /// ns).
     Elastic,
     /// Elastic, always with precomputed element stiffness matrices.
     ElasticStiffnessMatrix,
