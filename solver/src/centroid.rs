@@ -178,19 +178,40 @@ mod tests {
         (points, u, s)
     }
 
+    /// [`batch`]'s quadrilaterals as the four-node geometry (`full`) and as the centroid's,
+    /// per element and in lanes (`half`), with its displacements and stresses.
+    struct Fixture {
+        full: PointGeometry<Lanes>,
+        centroids: Vec<CentroidGeometry<f64>>,
+        half: CentroidGeometry<Lanes>,
+        u: Vector<Lanes>,
+        s: [Lanes; 4],
+    }
+
+    fn fixture() -> Fixture {
+        let (points, u, s) = batch();
+        let centroids: Vec<_> = points
+            .iter()
+            .map(|p| CentroidGeometry::of(p).unwrap())
+            .collect();
+        Fixture {
+            full: PointGeometry::lanes(&points),
+            half: CentroidGeometry::lanes(&centroids),
+            centroids,
+            u,
+            s,
+        }
+    }
+
     fn bits(x: &[Lanes]) -> Vec<u64> {
         x.iter().flat_map(|l| l.0.map(f64::to_bits)).collect()
     }
 
     #[test]
     fn b_bar_operators_have_the_point_geometry_bits() {
-        let (points, u, s) = batch();
-        let full = PointGeometry::lanes(&points);
-        let centroids: Vec<_> = points
-            .iter()
-            .map(|p| CentroidGeometry::of(p).unwrap())
-            .collect();
-        let half = CentroidGeometry::lanes(&centroids);
+        let Fixture {
+            full, half, u, s, ..
+        } = fixture();
         assert_eq!(
             bits(&[half.dilatation(0, &u)]),
             bits(&[full.dilatation(0, &u)])
@@ -210,13 +231,13 @@ mod tests {
     /// 1.9e-16 (strain) and 2.9e-16 (forces), a few roundings of sums of four products.
     #[test]
     fn one_point_operators_equal_the_four_node_sums() {
-        let (points, u, s) = batch();
-        let full = PointGeometry::lanes(&points);
-        let centroids: Vec<_> = points
-            .iter()
-            .map(|p| CentroidGeometry::of(p).unwrap())
-            .collect();
-        let half = CentroidGeometry::lanes(&centroids);
+        let Fixture {
+            full,
+            centroids,
+            half,
+            u,
+            s,
+        } = fixture();
         let w = 3.7e-5;
         let weighted: Vec<_> = centroids.iter().map(|c| c.scaled(w)).collect();
         let weighted = CentroidGeometry::lanes(&weighted);
