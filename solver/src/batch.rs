@@ -191,8 +191,7 @@ impl<F: Formulation, M: ConstitutiveModel> Kernel for StressPathChunk<'_, F, M> 
             let mut screened = None;
             // A material without states never yields and has no screen: the branch is not
             // compiled for it (its code changed the elastic stress path's registers).
-            let can_yield = std::mem::size_of::<M::Batch>() > 0;
-            if let Some(screen) = self.screen.filter(|_| can_yield) {
+            if let Some(screen) = self.screen.filter(|_| M::HAS_STATES) {
                 let point_states = &states[k0 / LANES * F::POINTS..][..F::POINTS];
                 let virgin = virgin_lanes(material, point_states, b, active);
                 if Lanes::any(virgin) {

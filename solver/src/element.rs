@@ -201,7 +201,7 @@ pub fn response<F: Formulation, M: ConstitutiveModel, R: Real>(
         let r = material.update(&strain, batch, at, active);
         energy.strain += w[p] * r.strain_energy_density;
         // (A material without states does no plastic work: +0 stays +0.)
-        if std::mem::size_of::<M::Batch>() > 0 {
+        if M::HAS_STATES {
             energy.plastic_work += w[p] * r.plastic_work_density;
         }
         formulation.add_point_forces(at, p, &r.stress, &mut f, &mut acc);

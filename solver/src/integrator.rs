@@ -78,11 +78,11 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
                 }
             })
             .collect();
-        // Elastic materials have a zero-sized state and a cheap kernel.
+        // Elastic materials have no states and a cheap kernel.
         let assembly = Assembly::for_mesh(
             formulation.connectivity(),
             mesh.mesh.n_nodes(),
-            std::mem::size_of::<M::Batch>() > 0,
+            M::HAS_STATES,
         );
         PlateModel {
             states: vec![M::Batch::default(); n.div_ceil(LANES) * F::POINTS],

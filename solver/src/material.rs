@@ -55,6 +55,10 @@ pub trait ConstitutiveModel: Sync + 'static {
     /// Equivalent plastic strain of a state.
     fn equivalent_plastic_strain(&self, state: &Self::State) -> f64;
     fn elastic(&self) -> &Elastic;
+    /// Whether the model keeps states: false for the elastic one, whose states are
+    /// zero-sized. A model without states never yields and does no plastic work, so the
+    /// kernels leave out (at compile time) what only such a model needs.
+    const HAS_STATES: bool = std::mem::size_of::<Self::Batch>() > 0;
     /// The flow stress of a point that has never yielded (Pa), `None` for a material that
     /// never yields: below it in von Mises stress a virgin point is linear elastic.
     fn virgin_yield_stress(&self) -> Option<f64> {
