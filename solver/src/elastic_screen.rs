@@ -121,13 +121,7 @@ impl ElasticScreen {
         at: usize,
         ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>, R::Mask) {
-        // K_e kills translations: remove node 0's so the energy suffers no cancellation.
-        let (tx, ty) = (ue[0], ue[1]);
-        let mut relative = *ue;
-        for (i, x) in relative.iter_mut().enumerate() {
-            *x = *x - if i % 2 == 0 { tx } else { ty };
-        }
-        let (f, energy) = self.kernel.screen_product(formulation, at, &relative);
+        let (f, energy) = self.kernel.screen_product(formulation, at, ue);
         (f, energy, self.below(at, &energy))
     }
 

@@ -89,36 +89,32 @@ impl LinearKernel {
         at: usize,
         ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>) {
-        // Relative to node 0 (its columns would multiply zeros: see the module doc).
-        let (tx, ty) = (ue[0], ue[1]);
-        let mut relative = [R::splat(0.0); STORED];
-        for (j, x) in relative.iter_mut().enumerate() {
-            *x = ue[j + 2] - if j % 2 == 0 { tx } else { ty };
-        }
+        // Node 0's entries are zeros: its columns are not stored (see the module doc).
+        let relative = relative_to_node_0(ue);
+        // The stored columns' entries as an array of their own: read through the eight
+        // (`relative[2..]`), q4-sri's elastic kernel took 10 ns instead of 5.2, and copied by
+        // `copy_from_slice` 5.7 (LLVM's code changed; kprof, interleaved, 2026-11-25).
+        let stored: [R; STORED] = std::array::from_fn(|j| relative[j + 2]);
         // Column by column: each row of `fe` is an independent sum in column order.
         let columns = self.matrices.batch::<R>(at);
         let mut fe = [R::splat(0.0); 8];
-        for (column, &uj) in columns.iter().zip(&relative) {
+        for (column, &uj) in columns.iter().zip(&stored) {
             for (f, k) in fe.iter_mut().zip(column) {
                 *f += R::of_batch(k, at) * uj;
             }
         }
         let mut work = R::splat(0.0);
-        for (&f, &u) in fe.iter().skip(2).zip(&relative) {
+        for (&f, &u) in fe.iter().skip(2).zip(&stored) {
             work += f * u;
         }
-        let mut hourglass_u = [R::splat(0.0); 8];
-        for (x, &r) in hourglass_u.iter_mut().skip(2).zip(&relative) {
-            *x = r;
-        }
-        let hourglass = formulation.hourglass_energy(at, &hourglass_u);
+        let hourglass = formulation.hourglass_energy(at, &relative);
         (fe, energies(work, hourglass))
     }
 
-    /// [`LinearKernel::product`] for the elastic screen, of `relative` (m: displacements
-    /// relative to node 0, its first two entries zero), written as a product over all eight
-    /// columns, the first two (not stored) standing in by columns 2 and 3 times those exact
-    /// zeros: each adds +-0 to a +0 sum, so the bits are `product`'s. Why: this is the shape
+    /// [`LinearKernel::product`] for the elastic screen, written as a product over all eight
+    /// columns of the displacements relative to node 0, the first two (not stored) standing
+    /// in by columns 2 and 3 times node 0's exact zeros: each adds +-0 to a +0 sum, so the
+    /// bits are `product`'s. Why: this is the shape
     /// the stress path's kernel was tuned with; with `product`'s shape inlined there (never
     /// run in it when every point yields), the all-yielding kernel took 31.2 ns instead of
     /// 29.9 (other registers).
@@ -127,8 +123,9 @@ impl LinearKernel {
         &self,
         formulation: &F,
         at: usize,
-        relative: &Vector<R>,
+        ue: &Vector<R>,
     ) -> (Vector<R>, Energy<R>) {
+        let relative = &relative_to_node_0(ue);
         let c = self.matrices.batch::<R>(at);
         let columns = [&c[0], &c[1], &c[0], &c[1], &c[2], &c[3], &c[4], &c[5]];
         let mut fe = [R::splat(0.0); 8];
@@ -144,6 +141,18 @@ impl LinearKernel {
         let hourglass = formulation.hourglass_energy(at, relative);
         (fe, energies(work, hourglass))
     }
+}
+
+/// The displacements `ue` (m) relative to node 0's: `K_e ue` of these is `K_e ue` (see the
+/// module documentation), and node 0's entries are exact zeros (for finite `ue`).
+#[inline(always)]
+fn relative_to_node_0<R: Real>(ue: &Vector<R>) -> Vector<R> {
+    let (tx, ty) = (ue[0], ue[1]);
+    let mut relative = *ue;
+    for (i, x) in relative.iter_mut().enumerate() {
+        *x = *x - if i % 2 == 0 { tx } else { ty };
+    }
+    relative
 }
 
 /// The energies (J) of a stiffness product: `work = u . K u` less the `hourglass` energy.
@@ -218,10 +227,9 @@ mod tests {
         };
         for e in 0..formulation.n_elements() {
             let ue = gather(formulation.nodes(e), &u);
-            let relative: ElementVector = std::array::from_fn(|i| ue[i] - ue[i % 2]);
             assert_eq!(
                 bits(kernel.product(&formulation, e, &ue)),
-                bits(kernel.screen_product(&formulation, e, &relative)),
+                bits(kernel.screen_product(&formulation, e, &ue)),
                 "element {e}"
             );
         }
