@@ -2,59 +2,46 @@
 //! Dokko & Kim (2004): 2-D plane strain, 4-node quads with lumped mass, central differences,
 //! Hertz line contact solved each step, von Mises plasticity, energy bookkeeping.
 //!
-//! Read `ALGORITHM.md` (next to this crate's `Cargo.toml`) for the exact contract. Modules:
-//! [`scene`] (input), [`mesh`], [`element`], [`material`], [`contact`], [`impactor`],
-//! [`model`] (element x material x kernel), [`integrator`] (the time loop), [`history`] (what
-//! the loop records), [`energy`],
-//! [`summary`], [`output`] (files).
+//! Read `ALGORITHM.md` (next to this crate's `Cargo.toml`) for the exact contract. The folders
+//! follow the pipeline: [`input`] (the scene, validated; its cost estimated), [`mesh`],
+//! [`lanes`] (the number types of the kernels, scalar and batched), [`physics`] (elements,
+//! materials, impactor, contact, loads), [`kernels`] (the batched element kernels and their
+//! assembly on threads), [`time_loop`] (the model factory, the
+//! central-difference loop, its stable step, energies and recorder), [`output`] (files and
+//! `summary.json`).
 
-pub mod assembly;
-pub mod batch;
-pub mod budget;
-pub mod centroid;
-pub mod contact;
-pub mod contact_failure;
-pub mod elastic_screen;
-pub mod element;
-pub mod energy;
-pub mod error;
-pub mod geometry;
-pub mod heap;
-pub mod history;
-pub mod impactor;
-pub mod integrator;
-pub mod internal_forces;
-pub mod interrupt;
-pub mod load;
-pub mod material;
+pub mod input;
+pub mod kernels;
+pub mod lanes;
 pub mod mesh;
-pub mod model;
-pub mod out_dir;
 pub mod output;
-pub mod overrides;
-pub mod progress;
-pub mod real;
-pub mod row_batches;
-pub mod scene;
-pub mod simd;
-pub mod stable_step;
-pub mod stiffness;
-pub mod summary;
-pub mod workers;
-pub mod yaml_field;
+pub mod physics;
+pub mod time_loop;
+
+// The modules' paths before the solver was grouped into folders, kept for the other crates.
+pub use input::{budget, error, overrides, scene, yaml_field};
+pub use kernels::{assembly, batch, elastic_screen, row_batches, stiffness, workers};
+pub use lanes::{heap, real, simd};
+pub use output::{out_dir, summary};
+pub use physics::{
+    centroid, contact, contact_failure, element, geometry, impactor, load, material,
+};
+pub use time_loop::{
+    energy, history, integrator, internal_forces, interrupt, model, progress, stable_step,
+};
 
 use std::time::Instant;
 
-pub use error::{Error, Result};
-pub use history::{History, HistorySink};
-pub use integrator::{Observer, Quiet};
-pub use scene::Scene;
-pub use summary::Summary;
+pub use input::error::{Error, Result};
+pub use input::scene::Scene;
+pub use output::summary::Summary;
+pub use time_loop::history::{History, HistorySink};
+pub use time_loop::integrator::{Observer, Quiet};
 
-use element::Formulation;
-use integrator::PlateModel;
-use material::ConstitutiveModel;
 use mesh::PlateMesh;
+use physics::element::Formulation;
+use physics::material::ConstitutiveModel;
+use time_loop::integrator::PlateModel;
 
 /// Everything a run produces in memory.
 #[derive(Debug, Clone)]
@@ -72,7 +59,7 @@ pub fn simulate(scene: &Scene, observer: &mut dyn Observer) -> Result<Outcome> {
 }
 
 /// [`simulate`] refusing, before anything is allocated, a scene whose memory estimate
-/// ([`budget::Estimate`]) exceeds `max_memory` bytes or, when None, the memory the machine has
+/// ([`input::budget::Estimate`]) exceeds `max_memory` bytes or, when None, the memory the machine has
 /// available: every run is protected, the CLI's, the harness's and the Python package's.
 pub fn simulate_within(
     scene: &Scene,
@@ -101,7 +88,7 @@ pub fn simulate_into(
         observer,
         max_memory,
         sink,
-        simd::KernelPath::fastest(),
+        lanes::simd::KernelPath::fastest(),
     )
 }
 
@@ -112,15 +99,15 @@ pub fn simulate_on(
     observer: &mut dyn Observer,
     max_memory: Option<f64>,
     sink: &mut dyn HistorySink,
-    path: simd::KernelPath,
+    path: lanes::simd::KernelPath,
 ) -> Result<(Summary, PlateMesh)> {
-    let estimate = budget::Estimate::of(scene);
+    let estimate = input::budget::Estimate::of(scene);
     let estimate = if sink.holds_rows() {
         estimate
     } else {
         estimate.streamed()
     };
-    budget::check(scene, &estimate, max_memory)?;
+    input::budget::check(scene, &estimate, max_memory)?;
     let started = Instant::now();
     let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
     let run = Run {
@@ -130,7 +117,8 @@ pub fn simulate_on(
         observer,
         sink,
     };
-    let summary = model::build_on(scene, &mesh, model::Kernel::Solver, path, run)??;
+    let summary =
+        time_loop::model::build_on(scene, &mesh, time_loop::model::Kernel::Solver, path, run)??;
     Ok((summary, mesh))
 }
 
@@ -143,7 +131,7 @@ struct Run<'a> {
     sink: &'a mut dyn HistorySink,
 }
 
-impl model::UseModel for Run<'_> {
+impl time_loop::model::UseModel for Run<'_> {
     type Output = Result<Summary>;
 
     fn use_model<F: Formulation, M: ConstitutiveModel>(
@@ -151,8 +139,14 @@ impl model::UseModel for Run<'_> {
         mut model: PlateModel<F, M>,
     ) -> Self::Output {
         let setup_done = Instant::now();
-        let totals = integrator::run(self.scene, self.mesh, &mut model, self.observer, self.sink)?;
-        let timing = summary::Timing {
+        let totals = time_loop::integrator::run(
+            self.scene,
+            self.mesh,
+            &mut model,
+            self.observer,
+            self.sink,
+        )?;
+        let timing = output::summary::Timing {
             setup_s: (setup_done - self.started).as_secs_f64(),
             loop_s: setup_done.elapsed().as_secs_f64(),
         };

@@ -1,0 +1,1080 @@
+//! The scene: what to simulate, read from YAML (SI units) and validated.
+//!
+//! [`SceneFile`] mirrors the YAML (unknown keys, wrong types, missing fields and duplicate
+//! keys are refused by the parser with line and column); [`Scene`] is the validated scene the
+//! solver runs. Every field, its unit and its default are documented on [`SceneFile`]'s parts
+//! and in the README.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use serde_saphyr::Spanned;
+
+use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::overrides::Overrides;
+
+type Num = Spanned<f64>;
+type Int = Spanned<i64>;
+
+/// The YAML document as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Optional title, for reports.
+    #[serde(default)]
+    pub title: Option<String>,
+    pub plate: PlateFile,
+    pub material: MaterialFile,
+    pub mesh: MeshFile,
+    pub load: LoadFile,
+    pub time: TimeFile,
+    #[serde(default)]
+    pub output: OutputFile,
+}
+
+/// `plate: {length, width, thickness, ends}`, lengths in m; `length` is clamp to clamp,
+/// results are totals over `width`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlateFile {
+    pub length: Num,
+    pub width: Num,
+    pub thickness: Num,
+    /// Support of the two ends (default clamped).
+    #[serde(default)]
+    pub ends: Ends,
+}
+
+/// How the ends of the plate (x = 0 and x = L) are held.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Ends {
+    /// `u_x = u_y = 0` (the paper).
+    #[default]
+    Clamped,
+    /// `u_x = 0`, `u_y` free (plane P waves through the thickness).
+    Roller,
+    /// `u_y = 0`, `u_x` free (plane S waves through the thickness).
+    Slider,
+}
+
+/// `material`: `density` kg/m^3, `youngs_modulus` Pa, `poisson_ratio` (-), optional `plasticity`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialFile {
+    pub density: Num,
+    pub youngs_modulus: Num,
+    pub poisson_ratio: Num,
+    #[serde(default)]
+    pub plasticity: Option<PlasticityFile>,
+}
+
+/// `plasticity: {yield_stress: Pa, hardening: {linear: E_t Pa} | {table: [[eqps, Pa], ...]}}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlasticityFile {
+    pub yield_stress: Num,
+    pub hardening: Spanned<HardeningFile>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum HardeningFile {
+    /// Tangent modulus of the uniaxial curve after yield, Pa (0 = perfectly plastic).
+    Linear(f64),
+    /// Piecewise-linear flow stress (Pa) against equivalent plastic strain (-).
+    Table(Vec<[f64; 2]>),
+}
+
+/// `mesh: {nx, ny, element, model, grading, hourglass, distortion}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshFile {
+    /// Elements along the modelled length.
+    pub nx: Int,
+    /// Elements through the thickness (even, >= 2).
+    pub ny: Int,
+    #[serde(default)]
+    pub element: ElementKind,
+    #[serde(default)]
+    pub model: Model,
+    /// Largest / smallest element length along x, smallest at mid-span (default 1: uniform).
+    #[serde(default)]
+    pub grading: Option<Num>,
+    /// Flanagan-Belytschko hourglass stiffness coefficient for `q4-1pt` (default 0.05).
+    #[serde(default)]
+    pub hourglass: Option<Num>,
+    /// Deterministic random shift of interior nodes, as a fraction of the local element size
+    /// (default 0; for robustness and stability studies).
+    #[serde(default)]
+    pub distortion: Option<Num>,
+}
+
+/// The element formulation; its YAML names are [`ElementKind::name`], read by [`FromStr`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(try_from = "String", into = "&'static str")]
+pub enum ElementKind {
+    /// 2x2 Gauss (locks in bending and under plastic flow; kept for comparison).
+    Q4Full,
+    /// Selective-reduced integration / B-bar: deviatoric 2x2, volumetric 1 point.
+    #[default]
+    Q4Sri,
+    /// One point with Flanagan-Belytschko hourglass control.
+    Q4OnePoint,
+}
+
+impl ElementKind {
+    pub const ALL: [ElementKind; 3] = [
+        ElementKind::Q4Full,
+        ElementKind::Q4Sri,
+        ElementKind::Q4OnePoint,
+    ];
+
+    /// The name in scenes, summaries and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementKind::Q4Full => "q4-full",
+            ElementKind::Q4Sri => "q4-sri",
+            ElementKind::Q4OnePoint => "q4-1pt",
+        }
+    }
+}
+
+/// The one parser of element names.
+impl std::str::FromStr for ElementKind {
+    type Err = String;
+    fn from_str(name: &str) -> std::result::Result<Self, String> {
+        ElementKind::ALL
+            .into_iter()
+            .find(|k| k.name() == name)
+            .ok_or_else(|| {
+                let known: Vec<String> = ElementKind::ALL
+                    .iter()
+                    .map(|k| format!("`{}`", k.name()))
+                    .collect();
+                format!(
+                    "unknown variant `{name}`, expected one of {}",
+                    known.join(", ")
+                )
+            })
+    }
+}
+
+impl TryFrom<String> for ElementKind {
+    type Error = String;
+    fn try_from(name: String) -> std::result::Result<Self, String> {
+        name.parse()
+    }
+}
+
+impl From<ElementKind> for &'static str {
+    fn from(kind: ElementKind) -> &'static str {
+        kind.name()
+    }
+}
+
+/// Half plate with a symmetry plane at mid-span, or the full plate.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Model {
+    #[default]
+    Half,
+    Full,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum LoadFile {
+    Impactor(ImpactorFile),
+    Pulse(PulseFile),
+    Traction(TractionFile),
+}
+
+/// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s
+/// toward the plate, `nose_radius` m, `youngs_modulus` Pa, `poisson_ratio` (-).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImpactorFile {
+    pub mass: Num,
+    pub velocity: Num,
+    pub nose_radius: Num,
+    pub youngs_modulus: Num,
+    pub poisson_ratio: Num,
+    pub contact_law: ContactLawFile,
+    #[serde(default)]
+    pub indentation_datum: MidSpanNode,
+    /// Node the contact force acts on; defaults to `indentation_datum`.
+    #[serde(default)]
+    pub force_node: Option<MidSpanNode>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "snake_case", deny_unknown_fields)]
+pub enum ContactLawFile {
+    /// Eq. (4) with its hidden length `length_unit` (m): 1.0 = evaluated in metres.
+    Paper { length_unit: Num },
+    /// Johnson's dimensionally consistent 2-D line contact, plate datum at `datum_depth` (m).
+    Johnson { datum_depth: Num },
+}
+
+/// A node on the mid-span line.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MidSpanNode {
+    #[default]
+    MidPlane,
+    TopSurface,
+}
+
+/// `pulse: {force: N (whole width), duration: s}`: rectangular, downward on the top
+/// mid-span node.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PulseFile {
+    pub force: Num,
+    pub duration: Num,
+}
+
+/// `traction: {normal: Pa, shear: Pa, duration: s}`: uniform on the whole top surface,
+/// rectangular in time; `normal` positive pushes down, `shear` positive pulls toward +x.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionFile {
+    #[serde(default)]
+    pub normal: Option<Num>,
+    #[serde(default)]
+    pub shear: Option<Num>,
+    pub duration: Num,
+}
+
+/// `time: {end, dt, limit, allow_unstable_dt}`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeFile {
+    pub end: Spanned<EndFile>,
+    pub dt: Spanned<DtFile>,
+    /// Hard stop for `end: {after_contact}`, s (default 0.05).
+    #[serde(default)]
+    pub limit: Option<Num>,
+    /// Accept a step above the stable estimate (stability studies only).
+    #[serde(default)]
+    pub allow_unstable_dt: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum EndFile {
+    /// End time, s.
+    At(f64),
+    /// Stop this long (s) after the contact force was last non-zero.
+    AfterContact(AfterContactFile),
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AfterContactFile {
+    pub after_contact: f64,
+}
+
+/// `dt: {cfl: c | fixed: s, estimate: element | global}` (exactly one of `cfl`, `fixed`).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DtFile {
+    /// Fraction of the stable estimate.
+    #[serde(default)]
+    pub cfl: Option<f64>,
+    /// Time step, s.
+    #[serde(default)]
+    pub fixed: Option<f64>,
+    /// Which estimate of the stable step (default `element`).
+    #[serde(default)]
+    pub estimate: Estimate,
+}
+
+/// `output: {every: s, probes: {NAME: {x: m, y: m}}, fields: {every: s}}`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputFile {
+    /// Time between history rows, s (default: every step).
+    #[serde(default)]
+    pub every: Option<Num>,
+    #[serde(default)]
+    pub probes: BTreeMap<String, ProbeFile>,
+    #[serde(default)]
+    pub fields: Option<FieldsFile>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeFile {
+    pub x: Num,
+    pub y: Num,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FieldsFile {
+    pub every: Num,
+}
+
+// ---------------------------------------------------------------------------------------
+// The validated scene.
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// The file it came from (for messages).
+    pub source: PathBuf,
+    pub title: Option<String>,
+    pub plate: Plate,
+    pub material: Material,
+    pub mesh: MeshSettings,
+    pub load: Load,
+    pub time: TimeSettings,
+    pub output: OutputSettings,
+}
+
+/// Plate dimensions (m) and end supports.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plate {
+    pub length: f64,
+    pub width: f64,
+    pub thickness: f64,
+    pub ends: Ends,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// kg/m^3
+    pub density: f64,
+    /// Pa
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    pub plasticity: Option<Plasticity>,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plasticity {
+    /// Pa
+    pub yield_stress: f64,
+    pub hardening: Hardening,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hardening {
+    /// Uniaxial tangent modulus after yield, Pa.
+    Linear { tangent_modulus: f64 },
+    /// (equivalent plastic strain, flow stress Pa), starting at (0, yield stress).
+    Table(Vec<(f64, f64)>),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshSettings {
+    pub nx: usize,
+    pub ny: usize,
+    pub element: ElementKind,
+    pub model: Model,
+    pub grading: f64,
+    pub hourglass: f64,
+    /// Interior-node shift as a fraction of the local element size, in [0, 0.4].
+    pub distortion: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Load {
+    Impactor(Impactor),
+    Pulse(Pulse),
+    Traction(Traction),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Impactor {
+    /// kg, whole impactor
+    pub mass: f64,
+    /// m/s toward the plate
+    pub velocity: f64,
+    /// m
+    pub nose_radius: f64,
+    /// Pa
+    pub youngs_modulus: f64,
+    pub poisson_ratio: f64,
+    pub contact_law: ContactLawChoice,
+    pub indentation_datum: MidSpanNode,
+    pub force_node: MidSpanNode,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactLawChoice {
+    /// Hidden length of eq. (4), m.
+    Paper { length_unit: f64 },
+    /// Depth of the plate datum below the surface, m.
+    Johnson { datum_depth: f64 },
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pulse {
+    /// N, whole width
+    pub force: f64,
+    /// s
+    pub duration: f64,
+}
+
+/// Uniform traction on the top surface, Pa, for `duration` s.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traction {
+    pub normal: f64,
+    pub shear: f64,
+    pub duration: f64,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeSettings {
+    pub end: End,
+    pub dt: DtChoice,
+    /// How the stable step is estimated (`time.dt.estimate`).
+    pub dt_estimate: Estimate,
+    /// Where `time.dt` is written, for the stable-step error.
+    pub dt_location: SourceLocation,
+    pub allow_unstable_dt: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum End {
+    /// s
+    At(f64),
+    /// Stop `after` s after the contact force was last non-zero; never run past `limit` s.
+    AfterContact { after: f64, limit: f64 },
+}
+
+/// Which estimate of the largest eigenvalue sets the stable step (`time.dt.estimate`; see
+/// `stable_step`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Estimate {
+    /// The element eigenvalue bound.
+    #[default]
+    Element,
+    /// Power iteration on the assembled operator, the contact spring included.
+    Global,
+}
+
+impl Estimate {
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimate::Element => "element",
+            Estimate::Global => "global",
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DtChoice {
+    Cfl(f64),
+    Fixed(f64),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputSettings {
+    /// s between history rows; `None` = every step.
+    pub every: Option<f64>,
+    /// Named points (x from the clamped end, y from the bottom), m, sorted by name.
+    pub probes: Vec<(String, [f64; 2])>,
+    /// s between VTK field files; `None` = no field output.
+    pub fields_every: Option<f64>,
+}
+
+/// Default hard stop of `end: {after_contact}`, s.
+pub const DEFAULT_TIME_LIMIT: f64 = 0.05;
+/// Default Flanagan-Belytschko hourglass coefficient.
+pub const DEFAULT_HOURGLASS: f64 = 0.05;
+
+impl Scene {
+    /// Reads and validates a scene file.
+    pub fn from_file(path: &Path) -> Result<Scene> {
+        Scene::from_file_with(path, &Overrides::new())
+    }
+
+    /// Reads a scene file, applies `overrides` (see [`Scene::from_yaml_with`]) and validates.
+    pub fn from_file_with(path: &Path, overrides: &Overrides) -> Result<Scene> {
+        let text = std::fs::read_to_string(path).map_err(|source| Error::ReadScene {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Scene::from_yaml_with(&text, overrides, path)
+    }
+
+    /// Parses and validates YAML text; `source` names it in messages.
+    pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
+        let file: SceneFile = parse(text, source)?;
+        Validator { source }.scene(file)
+    }
+
+    /// Parses YAML text, sets each override at its dotted path of the scene (e.g.
+    /// `load.impactor.mass`, `time.dt.cfl`) and validates the result with the same rules as
+    /// a scene file. The text itself must be a valid scene; an override the rules refuse
+    /// gives [`Error::Override`], naming the override and carrying the rule's message.
+    pub fn from_yaml_with(text: &str, overrides: &Overrides, source: &Path) -> Result<Scene> {
+        let base = Scene::from_yaml(text, source)?;
+        if overrides.is_empty() {
+            return Ok(base);
+        }
+        let tree: serde_json::Value = parse(text, source)?;
+        let merged = |keys: &mut dyn Iterator<Item = (&String, &serde_json::Value)>| {
+            let mut tree = tree.clone();
+            for (key, value) in keys {
+                crate::input::overrides::set(&mut tree, key, value)?;
+            }
+            let json = serde_json::to_string_pretty(&tree).map_err(|e| e.to_string())?;
+            let file: SceneFile = parse(&json, source).map_err(|e| without_location(&e))?;
+            Validator { source }
+                .scene(file)
+                .map_err(|e| without_location(&e))
+        };
+        let refused = match merged(&mut overrides.iter()) {
+            Ok(scene) => return Ok(with_locations_of(scene, &base, overrides)),
+            Err(message) => message,
+        };
+        // Name the first override the rules refuse on its own; else the combination.
+        for (key, value) in overrides {
+            if let Err(message) = merged(&mut std::iter::once((key, value))) {
+                return Err(Error::Override {
+                    file: source.to_path_buf(),
+                    key: key.clone(),
+                    value: value.to_string(),
+                    message,
+                });
+            }
+        }
+        Err(Error::Override {
+            file: source.to_path_buf(),
+            key: overrides.keys().cloned().collect::<Vec<_>>().join(", "),
+            value: "(together)".into(),
+            message: refused,
+        })
+    }
+
+    pub fn is_plastic(&self) -> bool {
+        self.material.plasticity.is_some()
+    }
+
+    pub fn impactor(&self) -> Option<&Impactor> {
+        match &self.load {
+            Load::Impactor(i) => Some(i),
+            Load::Pulse(_) | Load::Traction(_) => None,
+        }
+    }
+}
+
+/// The parser's message without the location it repeats (we print our own) and without
+/// hints meant for programmers.
+fn first_line_without_location(message: &str) -> String {
+    let first = message.lines().next().unwrap_or(message).trim();
+    let mut text = first.strip_prefix("error: ").unwrap_or(first);
+    if let Some(rest) = text.strip_prefix("line ") {
+        // "line N column M: message"
+        if let Some((_, after)) = rest.split_once(": ") {
+            text = after;
+        }
+    }
+    let text = text
+        .split(", set DuplicateKeyPolicy")
+        .next()
+        .unwrap_or(text);
+    match text {
+        "invalid floating point" => "expected a number".to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// Parses YAML text into `T`, with the parser's line and column.
+fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T> {
+    serde_saphyr::from_str(text).map_err(|e| {
+        let (line, column) = e
+            .location()
+            .map(|l| (l.line(), l.column()))
+            .unwrap_or((0, 0));
+        Error::ParseScene {
+            location: SourceLocation {
+                file: source.to_path_buf(),
+                line,
+                column,
+            },
+            message: crate::input::yaml_field::explain(
+                &first_line_without_location(&e.to_string()),
+                &crate::input::yaml_field::field_at(text, line, column),
+            ),
+        }
+    })
+}
+
+/// A message about the merged tree, whose lines and columns are not the file's.
+fn without_location(e: &Error) -> String {
+    match e {
+        Error::ParseScene { message, .. } => message.clone(),
+        Error::InvalidScene(v) => format!("{} = {}: {}", v.field, v.value, v.allowed),
+        other => other.to_string(),
+    }
+}
+
+/// The scene of the merged tree, pointing at the file where the file still holds the value.
+fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides) -> Scene {
+    let dt_overridden = overrides
+        .keys()
+        .any(|k| k == "time" || k.starts_with("time.dt"));
+    scene.time.dt_location = if dt_overridden {
+        SourceLocation::file(&base.source)
+    } else {
+        base.time.dt_location.clone()
+    };
+    scene
+}
+
+struct Validator<'a> {
+    source: &'a Path,
+}
+
+/// A validation rule: what a value must satisfy, in words.
+#[derive(Clone, Copy)]
+struct Rule {
+    allowed: &'static str,
+    ok: fn(f64) -> bool,
+}
+
+const POSITIVE: Rule = Rule {
+    allowed: "must be a finite number > 0",
+    ok: |v| v.is_finite() && v > 0.0,
+};
+const NON_NEGATIVE: Rule = Rule {
+    allowed: "must be a finite number >= 0",
+    ok: |v| v.is_finite() && v >= 0.0,
+};
+const POISSON: Rule = Rule {
+    allowed: "must lie in (-1, 0.5) (exclusive)",
+    ok: |v| v > -1.0 && v < 0.5,
+};
+const CFL: Rule = Rule {
+    allowed: "must lie in (0, 1] (fraction of the stable step)",
+    ok: |v| v > 0.0 && v <= 1.0,
+};
+const CFL_UNCHECKED: Rule = Rule {
+    allowed: "must be a finite number > 0",
+    ok: |v| v.is_finite() && v > 0.0,
+};
+
+impl Validator<'_> {
+    fn at<T>(&self, spanned: &Spanned<T>) -> SourceLocation {
+        SourceLocation::of(self.source, spanned)
+    }
+
+    fn check(&self, value: &Num, field: &str, rule: Rule) -> Result<f64> {
+        if (rule.ok)(value.value) {
+            Ok(value.value)
+        } else {
+            Err(Error::invalid(
+                self.at(value),
+                field,
+                value.value,
+                rule.allowed,
+            ))
+        }
+    }
+
+    fn fail<T, U>(
+        &self,
+        at: &Spanned<T>,
+        field: &str,
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Result<U> {
+        Err(Error::invalid(self.at(at), field, value, allowed))
+    }
+
+    fn scene(&self, file: SceneFile) -> Result<Scene> {
+        let plate = Plate {
+            length: self.check(&file.plate.length, "plate.length", POSITIVE)?,
+            width: self.check(&file.plate.width, "plate.width", POSITIVE)?,
+            thickness: self.check(&file.plate.thickness, "plate.thickness", POSITIVE)?,
+            ends: file.plate.ends,
+        };
+        let material = self.material(file.material)?;
+        let mesh = self.mesh(&file.mesh)?;
+        let load = self.load(file.load, &plate)?;
+        let time = self.time(&file.time)?;
+        let output = self.output(&file.output, &plate)?;
+        Ok(Scene {
+            source: self.source.to_path_buf(),
+            title: file.title,
+            plate,
+            material,
+            mesh,
+            load,
+            time,
+            output,
+        })
+    }
+
+    fn material(&self, m: MaterialFile) -> Result<Material> {
+        let youngs_modulus = self.check(&m.youngs_modulus, "material.youngs_modulus", POSITIVE)?;
+        let plasticity = match m.plasticity {
+            None => None,
+            Some(p) => Some(self.plasticity(p, youngs_modulus)?),
+        };
+        Ok(Material {
+            density: self.check(&m.density, "material.density", POSITIVE)?,
+            youngs_modulus,
+            poisson_ratio: self.check(&m.poisson_ratio, "material.poisson_ratio", POISSON)?,
+            plasticity,
+        })
+    }
+
+    fn plasticity(&self, p: PlasticityFile, youngs_modulus: f64) -> Result<Plasticity> {
+        let yield_stress = self.check(
+            &p.yield_stress,
+            "material.plasticity.yield_stress",
+            POSITIVE,
+        )?;
+        let field = "material.plasticity.hardening";
+        let hardening = match &p.hardening.value {
+            HardeningFile::Linear(et) => {
+                if !(et.is_finite() && *et >= 0.0 && *et < youngs_modulus) {
+                    return self.fail(
+                        &p.hardening,
+                        &format!("{field}.linear"),
+                        et,
+                        format!(
+                            "tangent modulus must lie in [0, youngs_modulus = {youngs_modulus:e}) Pa"
+                        ),
+                    );
+                }
+                Hardening::Linear {
+                    tangent_modulus: *et,
+                }
+            }
+            HardeningFile::Table(rows) => self.hardening_table(&p.hardening, rows, yield_stress)?,
+        };
+        Ok(Plasticity {
+            yield_stress,
+            hardening,
+        })
+    }
+
+    fn hardening_table(
+        &self,
+        at: &Spanned<HardeningFile>,
+        rows: &[[f64; 2]],
+        yield_stress: f64,
+    ) -> Result<Hardening> {
+        let field = "material.plasticity.hardening.table";
+        let show = |r: &[f64; 2]| format!("[{:e}, {:e}]", r[0], r[1]);
+        let Some(first) = rows.first() else {
+            return self.fail(
+                at,
+                field,
+                "[]",
+                "needs at least one [eqps, flow stress] row",
+            );
+        };
+        if first[0] != 0.0 || (first[1] - yield_stress).abs() > 1e-9 * yield_stress {
+            return self.fail(
+                at,
+                &format!("{field}[0]"),
+                show(first),
+                format!("must be [0, yield_stress] = [0, {yield_stress:e}]"),
+            );
+        }
+        for (k, pair) in rows.windows(2).enumerate() {
+            let (a, b) = (pair[0], pair[1]);
+            if !(b[0].is_finite() && b[1].is_finite() && b[0] > a[0] && b[1] >= a[1]) {
+                return self.fail(
+                    at,
+                    &format!("{field}[{}]", k + 1),
+                    show(&b),
+                    format!(
+                        "rows must have increasing plastic strain and non-decreasing stress (previous row {})",
+                        show(&a)
+                    ),
+                );
+            }
+        }
+        Ok(Hardening::Table(
+            rows.iter().map(|r| (r[0], r[1])).collect(),
+        ))
+    }
+
+    fn mesh(&self, m: &MeshFile) -> Result<MeshSettings> {
+        let nx = m.nx.value;
+        if !(1..=100_000).contains(&nx) {
+            return self.fail(&m.nx, "mesh.nx", nx, "must be an integer in [1, 100000]");
+        }
+        let ny = m.ny.value;
+        if !(2..=10_000).contains(&ny) || ny % 2 != 0 {
+            return self.fail(
+                &m.ny,
+                "mesh.ny",
+                ny,
+                "must be an even integer in [2, 10000] (the mid-plane must be a row of nodes)",
+            );
+        }
+        if m.model == Model::Full && nx % 2 != 0 {
+            return self.fail(
+                &m.nx,
+                "mesh.nx",
+                nx,
+                "must be even for model: full (mid-span must be a column of nodes)",
+            );
+        }
+        let grading = match &m.grading {
+            None => 1.0,
+            Some(g) => self.check(
+                g,
+                "mesh.grading",
+                Rule {
+                    allowed: "must lie in [1, 1000] (largest / smallest element length)",
+                    ok: |v| (1.0..=1000.0).contains(&v),
+                },
+            )?,
+        };
+        let hourglass = match &m.hourglass {
+            None => DEFAULT_HOURGLASS,
+            Some(h) => self.check(
+                h,
+                "mesh.hourglass",
+                Rule {
+                    allowed: "must lie in (0, 1]",
+                    ok: |v| v > 0.0 && v <= 1.0,
+                },
+            )?,
+        };
+        let distortion = match &m.distortion {
+            None => 0.0,
+            Some(d) => self.check(
+                d,
+                "mesh.distortion",
+                Rule {
+                    allowed: "must lie in [0, 0.4] (fraction of the local element size)",
+                    ok: |v| (0.0..=0.4).contains(&v),
+                },
+            )?,
+        };
+        Ok(MeshSettings {
+            nx: nx as usize,
+            ny: ny as usize,
+            element: m.element,
+            model: m.model,
+            grading,
+            hourglass,
+            distortion,
+        })
+    }
+
+    fn load(&self, load: LoadFile, plate: &Plate) -> Result<Load> {
+        Ok(match load {
+            LoadFile::Traction(t) => {
+                let finite = Rule {
+                    allowed: "must be a finite number (Pa)",
+                    ok: f64::is_finite,
+                };
+                let normal = match &t.normal {
+                    Some(v) => self.check(v, "load.traction.normal", finite)?,
+                    None => 0.0,
+                };
+                let shear = match &t.shear {
+                    Some(v) => self.check(v, "load.traction.shear", finite)?,
+                    None => 0.0,
+                };
+                if normal == 0.0 && shear == 0.0 {
+                    return self.fail(
+                        &t.duration,
+                        "load.traction",
+                        "normal = shear = 0",
+                        "needs a non-zero normal or shear traction (Pa)",
+                    );
+                }
+                Load::Traction(Traction {
+                    normal,
+                    shear,
+                    duration: self.check(&t.duration, "load.traction.duration", POSITIVE)?,
+                })
+            }
+            LoadFile::Pulse(p) => Load::Pulse(Pulse {
+                force: self.check(&p.force, "load.pulse.force", NON_NEGATIVE)?,
+                duration: self.check(&p.duration, "load.pulse.duration", POSITIVE)?,
+            }),
+            LoadFile::Impactor(i) => {
+                let f = |name: &str| format!("load.impactor.{name}");
+                let contact_law = match &i.contact_law {
+                    ContactLawFile::Paper { length_unit } => ContactLawChoice::Paper {
+                        length_unit: self.check(
+                            length_unit,
+                            &f("contact_law.paper.length_unit"),
+                            POSITIVE,
+                        )?,
+                    },
+                    ContactLawFile::Johnson { datum_depth } => {
+                        let depth = self.check(
+                            datum_depth,
+                            &f("contact_law.johnson.datum_depth"),
+                            POSITIVE,
+                        )?;
+                        if depth > plate.thickness {
+                            return self.fail(
+                                datum_depth,
+                                &f("contact_law.johnson.datum_depth"),
+                                depth,
+                                format!(
+                                    "must not exceed the plate thickness {} m",
+                                    plate.thickness
+                                ),
+                            );
+                        }
+                        ContactLawChoice::Johnson { datum_depth: depth }
+                    }
+                };
+                Load::Impactor(Impactor {
+                    mass: self.check(&i.mass, &f("mass"), POSITIVE)?,
+                    velocity: self.check(&i.velocity, &f("velocity"), POSITIVE)?,
+                    nose_radius: self.check(&i.nose_radius, &f("nose_radius"), POSITIVE)?,
+                    youngs_modulus: self.check(
+                        &i.youngs_modulus,
+                        &f("youngs_modulus"),
+                        POSITIVE,
+                    )?,
+                    poisson_ratio: self.check(&i.poisson_ratio, &f("poisson_ratio"), POISSON)?,
+                    contact_law,
+                    indentation_datum: i.indentation_datum,
+                    force_node: i.force_node.unwrap_or(i.indentation_datum),
+                })
+            }
+        })
+    }
+
+    fn time(&self, t: &TimeFile) -> Result<TimeSettings> {
+        let limit = match &t.limit {
+            None => DEFAULT_TIME_LIMIT,
+            Some(l) => self.check(l, "time.limit", POSITIVE)?,
+        };
+        let end = match &t.end.value {
+            EndFile::At(v) if v.is_finite() && *v > 0.0 => End::At(*v),
+            EndFile::At(v) => return self.fail(&t.end, "time.end", v, POSITIVE.allowed),
+            EndFile::AfterContact(a) if a.after_contact.is_finite() && a.after_contact >= 0.0 => {
+                End::AfterContact {
+                    after: a.after_contact,
+                    limit,
+                }
+            }
+            EndFile::AfterContact(a) => {
+                return self.fail(
+                    &t.end,
+                    "time.end.after_contact",
+                    a.after_contact,
+                    NON_NEGATIVE.allowed,
+                )
+            }
+        };
+        let dt_location = self.at(&t.dt);
+        let dt = match (&t.dt.value.cfl, &t.dt.value.fixed) {
+            (Some(c), None) => {
+                let rule = if t.allow_unstable_dt {
+                    CFL_UNCHECKED
+                } else {
+                    CFL
+                };
+                if !(rule.ok)(*c) {
+                    return self.fail(&t.dt, "time.dt.cfl", c, rule.allowed);
+                }
+                DtChoice::Cfl(*c)
+            }
+            (None, Some(d)) => {
+                if !(POSITIVE.ok)(*d) {
+                    return self.fail(&t.dt, "time.dt.fixed", d, POSITIVE.allowed);
+                }
+                DtChoice::Fixed(*d)
+            }
+            (c, _) => {
+                return self.fail(
+                    &t.dt,
+                    "time.dt",
+                    if c.is_some() { "both cfl and fixed" } else { "neither cfl nor fixed" },
+                    "takes exactly one of cfl (a fraction of the stable estimate) or fixed (s), and optionally estimate: element | global",
+                )
+            }
+        };
+        Ok(TimeSettings {
+            end,
+            dt,
+            dt_estimate: t.dt.value.estimate,
+            dt_location,
+            allow_unstable_dt: t.allow_unstable_dt,
+        })
+    }
+
+    fn output(&self, o: &OutputFile, plate: &Plate) -> Result<OutputSettings> {
+        let every = match &o.every {
+            None => None,
+            Some(e) => Some(self.check(e, "output.every", POSITIVE)?),
+        };
+        let fields_every = match &o.fields {
+            None => None,
+            Some(f) => Some(self.check(&f.every, "output.fields.every", POSITIVE)?),
+        };
+        let mut probes = Vec::with_capacity(o.probes.len());
+        for (name, p) in &o.probes {
+            let valid_name = !name.is_empty()
+                && name
+                    .chars()
+                    .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+            if !valid_name {
+                return self.fail(
+                    &p.x,
+                    "output.probes",
+                    format!("{name:?}"),
+                    "probe names use letters, digits, '_' and '-' only",
+                );
+            }
+            let x = p.x.value;
+            let y = p.y.value;
+            if !(x.is_finite() && (0.0..=plate.length).contains(&x)) {
+                return self.fail(
+                    &p.x,
+                    &format!("output.probes.{name}.x"),
+                    x,
+                    format!("must lie in [0, plate.length = {}] m", plate.length),
+                );
+            }
+            if !(y.is_finite() && (0.0..=plate.thickness).contains(&y)) {
+                return self.fail(
+                    &p.y,
+                    &format!("output.probes.{name}.y"),
+                    y,
+                    format!("must lie in [0, plate.thickness = {}] m", plate.thickness),
+                );
+            }
+            probes.push((name.clone(), [x, y]));
+        }
+        Ok(OutputSettings {
+            every,
+            probes,
+            fields_every,
+        })
+    }
+}
+
+impl SourceLocation {
+    /// A location naming only the file.
+    pub fn file(path: &Path) -> SourceLocation {
+        SourceLocation {
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+        }
+    }
+
+    /// Where the parser found `spanned` in `path`.
+    pub fn of<T>(path: &Path, spanned: &Spanned<T>) -> SourceLocation {
+        SourceLocation {
+            file: path.to_path_buf(),
+            line: spanned.referenced.line(),
+            column: spanned.referenced.column(),
+        }
+    }
+}

@@ -1,0 +1,11 @@
+//! The element kernels and their assembly: the linear-elastic stiffness product
+//! ([`stiffness`]), the batched kernels ([`batch`]) and the elastic screen
+//! ([`elastic_screen`]), and the scatter of element forces into nodal forces ([`assembly`],
+//! [`row_batches`]) on a team of threads ([`workers`]).
+
+pub mod assembly;
+pub mod batch;
+pub mod elastic_screen;
+pub mod row_batches;
+pub mod stiffness;
+pub mod workers;

@@ -1,0 +1,136 @@
+//! `summary.json`: the scalars of a run (whole plate, whole width, SI units; the key names
+//! carry the unit).
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::input::scene::{ContactLawChoice, ElementKind, Load, MidSpanNode, Model, Scene};
+use crate::mesh::PlateMesh;
+use crate::time_loop::energy::Energies;
+use crate::time_loop::history::{RunTotals, StopReason};
+
+/// Wall-clock split of a run, s.
+#[derive(Debug, Clone, Copy)]
+pub struct Timing {
+    pub setup_s: f64,
+    pub loop_s: f64,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Total contact impulse `sum (F_n + F_{n+1}) dt / 2`, N s.
+    #[serde(rename = "impulse_Ns")]
+    pub impulse: f64,
+    #[serde(rename = "peak_contact_force_N")]
+    pub peak_contact_force: f64,
+    /// Most negative mid-span mid-plane u_y, m.
+    #[serde(rename = "max_plate_displacement_m")]
+    pub max_plate_displacement: f64,
+    /// Most negative mid-span bottom-surface u_y, m. Away from the point force, so it
+    /// converges under mesh refinement where the loaded node's displacement (log-singular in
+    /// 2-D) creeps up.
+    #[serde(rename = "max_bottom_displacement_m")]
+    pub max_bottom_displacement: f64,
+    /// Every [start, end] of contact (of the pulse, for pulse scenes), s.
+    #[serde(rename = "contact_intervals_s")]
+    pub contact_intervals: Vec<[f64; 2]>,
+    /// End of the last contact interval, s (0 without contact).
+    #[serde(rename = "contact_duration_s")]
+    pub contact_duration: f64,
+    /// Signed, positive toward the plate; null for pulse scenes. m/s
+    #[serde(rename = "final_impactor_velocity_mps")]
+    pub final_impactor_velocity: Option<f64>,
+    /// Largest von Mises stress over all steps, per probe, Pa.
+    #[serde(rename = "max_von_mises_Pa")]
+    pub max_von_mises: BTreeMap<String, f64>,
+    pub max_energy_balance_error: f64,
+    #[serde(rename = "dt_s")]
+    pub dt: f64,
+    pub n_steps: u64,
+    pub n_elements: usize,
+    #[serde(rename = "wall_time_s")]
+    pub wall_time: f64,
+
+    // Added beyond the contract.
+    /// `|impulse - m (v0 - v_final)| / (m v0)`: eq. (19) makes it round-off.
+    pub impulse_momentum_error: Option<f64>,
+    /// `dt_s / dt_critical_s`.
+    pub cfl: f64,
+    #[serde(rename = "dt_critical_s")]
+    pub dt_critical: f64,
+    #[serde(rename = "final_time_s")]
+    pub final_time: f64,
+    pub stop_reason: StopReason,
+    pub element: ElementKind,
+    pub model: Model,
+    pub plastic: bool,
+    /// e.g. `paper(length_unit=0.001 m)`, `johnson(datum_depth=0.01 m)`, `pulse`.
+    pub contact_law: String,
+    pub indentation_datum: Option<MidSpanNode>,
+    pub force_node: Option<MidSpanNode>,
+    #[serde(rename = "initial_energy_J")]
+    pub initial_energy: Energies,
+    #[serde(rename = "final_energy_J")]
+    pub final_energy: Energies,
+    #[serde(rename = "setup_time_s")]
+    pub setup_time: f64,
+    #[serde(rename = "loop_time_s")]
+    pub loop_time: f64,
+    /// Time-loop wall time per element and step, ns.
+    pub ns_per_element_step: f64,
+}
+
+impl Summary {
+    pub fn new(scene: &Scene, mesh: &PlateMesh, t: &RunTotals, timing: Timing) -> Summary {
+        let n_elements = mesh.mesh.elements.len();
+        let impactor = scene.impactor();
+        let impulse_momentum_error = impactor
+            .zip(t.final_impactor_velocity)
+            .map(|(i, vf)| (t.impulse - i.mass * (i.velocity - vf)).abs() / (i.mass * i.velocity));
+        let contact_law = match &scene.load {
+            Load::Pulse(_) => "pulse".to_string(),
+            Load::Traction(_) => "traction".to_string(),
+            Load::Impactor(i) => match i.contact_law {
+                ContactLawChoice::Paper { length_unit } => {
+                    format!("paper(length_unit={length_unit} m)")
+                }
+                ContactLawChoice::Johnson { datum_depth } => {
+                    format!("johnson(datum_depth={datum_depth} m)")
+                }
+            },
+        };
+        Summary {
+            impulse: t.impulse,
+            peak_contact_force: t.peak_force,
+            max_plate_displacement: t.max_downward_mid,
+            max_bottom_displacement: t.max_downward_bottom,
+            contact_intervals: t.contact_intervals.clone(),
+            contact_duration: t.contact_intervals.last().map_or(0.0, |i| i[1]),
+            final_impactor_velocity: t.final_impactor_velocity,
+            max_von_mises: t.max_von_mises.iter().cloned().collect(),
+            max_energy_balance_error: t.max_balance_error,
+            dt: t.dt,
+            n_steps: t.n_steps,
+            n_elements,
+            wall_time: timing.setup_s + timing.loop_s,
+            impulse_momentum_error,
+            cfl: t.dt / t.dt_critical,
+            dt_critical: t.dt_critical,
+            final_time: t.final_time,
+            stop_reason: t.stop,
+            element: scene.mesh.element,
+            model: scene.mesh.model,
+            plastic: scene.is_plastic(),
+            contact_law,
+            indentation_datum: impactor.map(|i| i.indentation_datum),
+            force_node: impactor.map(|i| i.force_node),
+            initial_energy: t.initial_energy,
+            final_energy: t.final_energy,
+            setup_time: timing.setup_s,
+            loop_time: timing.loop_s,
+            ns_per_element_step: 1e9 * timing.loop_s
+                / (n_elements as f64 * t.n_steps.max(1) as f64),
+        }
+    }
+}

@@ -1,0 +1,391 @@
+//! The recorder of a run: what the time loop writes down at each step (`ALGORITHM.md`
+//! section 8). History rows at the output times (sent to a [`HistorySink`]: held in memory or
+//! streamed to a file), the probes' stresses, the contact intervals and the run's totals
+//! (impulse, peak force, largest displacements and von Mises stresses).
+
+use crate::input::error::{Error, Result};
+use crate::input::scene::Scene;
+use crate::mesh::PlateMesh;
+use crate::physics::element::Formulation;
+use crate::physics::material::{von_mises, Stress};
+use crate::time_loop::energy::{BalanceMonitor, Energies};
+
+/// A probe: the integration point nearest a named point, in the element containing it.
+#[derive(Debug, Clone)]
+pub struct Probe {
+    pub name: String,
+    pub element: usize,
+    pub point: usize,
+}
+
+/// Where history rows go as the run produces them.
+pub trait HistorySink {
+    /// Called once, before the first row, with the column names (units in the names).
+    fn begin(&mut self, columns: &[String]) -> Result<()>;
+    /// One row. Its last value is the raw energy imbalance (J), which becomes the energy
+    /// balance error only at the end of the run (it is divided by the run's largest energy).
+    fn row(&mut self, row: &[f64]) -> Result<()>;
+    /// The run ended: every row's last value becomes `balance.ratio(imbalance)`.
+    fn finish(&mut self, balance: &BalanceMonitor) -> Result<()>;
+    /// Whether the rows are held in memory (counted in the run's memory estimate).
+    fn holds_rows(&self) -> bool {
+        true
+    }
+}
+
+/// Sampled histories: one row per output time, columns named with their units. As a
+/// [`HistorySink`] it holds every row in memory.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct History {
+    pub columns: Vec<String>,
+    /// Row-major values, `columns.len()` per row.
+    pub values: Vec<f64>,
+}
+
+impl History {
+    pub fn n_rows(&self) -> usize {
+        if self.columns.is_empty() {
+            0
+        } else {
+            self.values.len() / self.columns.len()
+        }
+    }
+
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let c = self.columns.iter().position(|n| n == name)?;
+        Some(
+            self.values
+                .iter()
+                .skip(c)
+                .step_by(self.columns.len())
+                .copied()
+                .collect(),
+        )
+    }
+
+    /// Trapezoidal integral over time of `f(value)` of a column, over the rows up to `until`
+    /// (s) (e.g. the momentum deficit of a wave front). `None` without that column.
+    pub fn time_integral(&self, column: &str, until: f64, f: impl Fn(f64) -> f64) -> Option<f64> {
+        let t = self.column("time_s")?;
+        let v = self.column(column)?;
+        let mut integral = 0.0;
+        for k in 1..t.len() {
+            if t[k] > until {
+                break;
+            }
+            integral += 0.5 * (f(v[k - 1]) + f(v[k])) * (t[k] - t[k - 1]);
+        }
+        Some(integral)
+    }
+
+    pub fn row(&self, r: usize) -> &[f64] {
+        let n = self.columns.len();
+        &self.values[r * n..(r + 1) * n]
+    }
+}
+
+impl HistorySink for History {
+    fn begin(&mut self, columns: &[String]) -> Result<()> {
+        self.columns = columns.to_vec();
+        self.values = Vec::with_capacity(columns.len() * 1024);
+        Ok(())
+    }
+    fn row(&mut self, row: &[f64]) -> Result<()> {
+        self.values.extend_from_slice(row);
+        Ok(())
+    }
+    fn finish(&mut self, balance: &BalanceMonitor) -> Result<()> {
+        let width = self.columns.len();
+        for r in self.values.chunks_exact_mut(width) {
+            r[width - 1] = balance.ratio(r[width - 1]);
+        }
+        Ok(())
+    }
+}
+
+/// What stopped the run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    EndTime,
+    AfterContact,
+    TimeLimit,
+}
+
+/// Scalars gathered over every step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunTotals {
+    pub impulse: f64,
+    pub peak_force: f64,
+    pub max_downward_mid: f64,
+    pub max_downward_bottom: f64,
+    pub contact_intervals: Vec<[f64; 2]>,
+    pub final_impactor_velocity: Option<f64>,
+    pub max_von_mises: Vec<(String, f64)>,
+    pub max_balance_error: f64,
+    pub dt: f64,
+    pub dt_critical: f64,
+    pub n_steps: u64,
+    pub final_time: f64,
+    pub stop: StopReason,
+    pub initial_energy: Energies,
+    pub final_energy: Energies,
+}
+
+/// Steps needed to reach time `t` with step `dt` (times within 1e-9 dt count as reached).
+pub(crate) fn steps_to(t: f64, dt: f64) -> u64 {
+    (t / dt - 1e-9).ceil().max(0.0) as u64
+}
+
+/// A schedule of output steps every `every` s (every step when `None`).
+pub(crate) struct Schedule {
+    every: Option<f64>,
+    next: u64,
+    k: u64,
+}
+
+impl Schedule {
+    pub(crate) fn new(every: Option<f64>) -> Schedule {
+        Schedule {
+            every,
+            next: 0,
+            k: 0,
+        }
+    }
+    /// Whether step `n` is due; advances past it.
+    pub(crate) fn due(&mut self, n: u64, dt: f64) -> bool {
+        let Some(every) = self.every else { return true };
+        if n < self.next {
+            return false;
+        }
+        while self.next <= n {
+            self.k += 1;
+            self.next = steps_to(self.k as f64 * every, dt);
+        }
+        true
+    }
+}
+
+/// The state of the run at `t_n` that the recorder samples.
+pub(crate) struct Sample<'a> {
+    pub t: f64,
+    /// Contact (or applied) force `F_n`, N.
+    pub force: f64,
+    /// Indentation, impactor displacement (m) and velocity (m/s); impact scenes only.
+    pub impactor: Option<[f64; 3]>,
+    /// Mid-span `u_y` at the top, mid-plane and bottom, m.
+    pub uy: [f64; 3],
+    pub energies: &'a Energies,
+    /// `|E(t_n) - E(0) - W_ext(t_n)|`, J.
+    pub imbalance: f64,
+}
+
+/// Writes down the run as it goes: history rows into a sink, probes, contact intervals and
+/// the totals.
+pub(crate) struct Recorder<'s> {
+    probes: Vec<Probe>,
+    sink: &'s mut dyn HistorySink,
+    rows: Schedule,
+    /// Reused for every row (no allocation in the loop).
+    row: Vec<f64>,
+    in_contact: bool,
+    separated_at: Option<f64>,
+    totals: RunTotals,
+}
+
+impl<'s> Recorder<'s> {
+    pub(crate) fn new(
+        scene: &Scene,
+        probes: Vec<Probe>,
+        sink: &'s mut dyn HistorySink,
+        dt: f64,
+        dt_critical: f64,
+    ) -> Result<Self> {
+        let columns = history_columns(scene, &probes);
+        sink.begin(&columns)?;
+        let totals = RunTotals {
+            impulse: 0.0,
+            peak_force: 0.0,
+            max_downward_mid: 0.0,
+            max_downward_bottom: 0.0,
+            contact_intervals: Vec::new(),
+            final_impactor_velocity: None,
+            max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
+            max_balance_error: 0.0,
+            dt,
+            dt_critical,
+            n_steps: 0,
+            final_time: 0.0,
+            stop: StopReason::EndTime,
+            initial_energy: Energies::default(),
+            final_energy: Energies::default(),
+        };
+        Ok(Recorder {
+            rows: Schedule::new(scene.output.every),
+            row: Vec::with_capacity(columns.len()),
+            probes,
+            sink,
+            in_contact: false,
+            separated_at: None,
+            totals,
+        })
+    }
+
+    /// Contact intervals: `[first t_n with F > 0, first later t_n with F = 0]`; the peak force.
+    pub(crate) fn contact(&mut self, t: f64, force: f64) {
+        if force > 0.0 {
+            if !self.in_contact {
+                self.totals.contact_intervals.push([t, t]);
+                self.in_contact = true;
+            }
+            self.separated_at = None;
+            self.totals.peak_force = self.totals.peak_force.max(force);
+        } else if self.in_contact {
+            self.close_interval(t);
+            self.in_contact = false;
+            self.separated_at = Some(t);
+        }
+    }
+
+    /// When contact last ended (None while in contact or before any), s.
+    pub(crate) fn separated_at(&self) -> Option<f64> {
+        self.separated_at
+    }
+
+    /// Records step `n` (`last`: the run stops after it): the largest displacements and probe
+    /// stresses, and a history row when one is due. `stress` gives a probe's stress at `t_n`.
+    pub(crate) fn sample(
+        &mut self,
+        n: u64,
+        dt: f64,
+        last: bool,
+        at: &Sample,
+        stress: impl Fn(&Probe) -> Stress,
+    ) -> Result<()> {
+        let [top, mid, bottom] = at.uy;
+        self.totals.max_downward_mid = self.totals.max_downward_mid.min(mid);
+        self.totals.max_downward_bottom = self.totals.max_downward_bottom.min(bottom);
+        let want_row = self.rows.due(n, dt) || last;
+        for (p, max) in self.probes.iter().zip(self.totals.max_von_mises.iter_mut()) {
+            max.1 = max.1.max(von_mises(&stress(p)));
+        }
+        if !want_row {
+            return Ok(());
+        }
+        let row = &mut self.row;
+        row.clear();
+        row.push(at.t);
+        row.push(at.force);
+        if let Some(impactor) = at.impactor {
+            row.extend(impactor);
+        }
+        row.extend([top, mid, bottom]);
+        for p in &self.probes {
+            let st = stress(p);
+            row.extend([st[0], st[1], st[3], st[2], von_mises(&st)]);
+        }
+        row.extend(at.energies.as_row());
+        row.push(at.imbalance); // divided by the run's largest energy at the end
+        self.sink.row(row)
+    }
+
+    /// Adds one step's trapezoid `(F_n + F_{n+1}) dt / 2` to the impulse, N s.
+    pub(crate) fn impulse(&mut self, force: f64, next_force: f64, dt: f64) {
+        self.totals.impulse += 0.5 * (force + next_force) * dt;
+    }
+
+    /// The run stopped after step `n` at `t` (`at` its last sample): closes the open contact
+    /// interval and the history, returns the totals.
+    pub(crate) fn finish(
+        mut self,
+        n: u64,
+        stop: StopReason,
+        at: &Sample,
+        initial_energy: Energies,
+        balance: &BalanceMonitor,
+    ) -> Result<RunTotals> {
+        let totals = &mut self.totals;
+        totals.stop = stop;
+        totals.n_steps = n;
+        totals.final_time = at.t;
+        totals.final_energy = *at.energies;
+        totals.final_impactor_velocity = at.impactor.map(|i| i[2]);
+        totals.max_balance_error = balance.max_error();
+        totals.initial_energy = initial_energy;
+        if self.in_contact {
+            self.close_interval(at.t);
+        }
+        self.sink.finish(balance)?;
+        Ok(self.totals)
+    }
+
+    fn close_interval(&mut self, t: f64) {
+        if let Some(last) = self.totals.contact_intervals.last_mut() {
+            last[1] = t;
+        }
+    }
+}
+
+/// The history's columns, in `ALGORITHM.md` section 8's order.
+pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
+    let mut c: Vec<String> = vec!["time_s".into(), "contact_force_N".into()];
+    if scene.impactor().is_some() {
+        c.extend(
+            [
+                "indentation_m",
+                "impactor_displacement_m",
+                "impactor_velocity_mps",
+            ]
+            .map(String::from),
+        );
+    }
+    c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
+    for p in probes {
+        for q in ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"] {
+            c.push(format!("{}_{q}", p.name));
+        }
+    }
+    c.extend(Energies::COLUMNS.map(String::from));
+    c.push("energy_balance_error".into());
+    c
+}
+
+/// Finds each probe's element and nearest integration point.
+pub(crate) fn locate_probes<F: Formulation>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    formulation: &F,
+) -> Result<Vec<Probe>> {
+    scene
+        .output
+        .probes
+        .iter()
+        .map(|(name, at)| {
+            let point = mesh.fold(*at);
+            let element = mesh.element_containing(point).ok_or_else(|| {
+                Error::invalid(
+                    crate::input::error::SourceLocation::file(&scene.source),
+                    format!("output.probes.{name}"),
+                    format!("({}, {})", at[0], at[1]),
+                    "must lie inside the plate",
+                )
+            })?;
+            let coords = mesh.mesh.element_coords(element);
+            let distance = |xi: &[f64; 2]| {
+                let n = crate::physics::element::shape(*xi);
+                let x: f64 = (0..4).map(|a| n[a] * coords[a][0]).sum();
+                let y: f64 = (0..4).map(|a| n[a] * coords[a][1]).sum();
+                (x - point[0]).powi(2) + (y - point[1]).powi(2)
+            };
+            let xis = formulation.point_xi();
+            let nearest = (0..xis.len())
+                .min_by(|&a, &b| distance(&xis[a]).total_cmp(&distance(&xis[b])))
+                .unwrap_or(0);
+            Ok(Probe {
+                name: name.clone(),
+                element,
+                point: nearest,
+            })
+        })
+        .collect()
+}

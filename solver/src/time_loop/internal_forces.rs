@@ -1,0 +1,220 @@
+//! The internal forces of the plate model (eq. 13 assembled from the element kernels),
+//! compiled once, in this crate, for every formulation and material.
+//!
+//! Rust compiles a generic function in each crate that uses it, so the batched kernels were
+//! compiled anew into every binary (the solver's, the benchmarks', the Python module's), and
+//! LLVM's vectoriser did not always make the same code of them: measured 2026-11-25, the same
+//! q4-sri all-yielding kernel ran 30.6 ns per element-step in one binary and 34.5 ns in
+//! another, q4-full 65.8 and 28.6 ns (same bits). Here each (formulation, material) pair has
+//! one non-generic function, and the generic [`PlateModel::internal_forces`] finds its pair by
+//! type (a comparison of type ids that the compiler resolves) and calls it: every binary runs
+//! the code compiled here, so the benchmarks time what `impact` runs. A pair not listed (a
+//! test's own formulation, say) is compiled where it is used, as before.
+
+use std::any::Any;
+
+use crate::kernels::assembly::{each_element, ScatterChunk};
+use crate::kernels::batch;
+use crate::lanes::simd::{dispatch, KernelPath};
+use crate::physics::element::{
+    gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
+};
+use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::time_loop::integrator::PlateModel;
+
+impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
+    /// Internal forces at `u` into `f` (overwritten), updating the material states.
+    pub fn internal_forces(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        match compiled_here(self, u, f) {
+            Some(energy) => energy,
+            None => self.forces_here(u, f),
+        }
+    }
+
+    /// [`PlateModel::internal_forces`] compiled where it is called (the generic body).
+    #[inline(always)]
+    fn forces_here(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+        let PlateModel {
+            formulation,
+            material,
+            states,
+            linear,
+            screen,
+            assembly,
+            kernel_path,
+            ..
+        } = self;
+        let (formulation, material, path) = (&*formulation, &*material, *kernel_path);
+        let screen = screen.as_ref();
+        let nodes = |e: usize| formulation.nodes(e);
+        match (linear, path) {
+            (Some(k), KernelPath::Scalar) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    let chunk = (elements, forces, states, scatter);
+                    each_element(chunk, F::POINTS, nodes, |e, _| k.element(formulation, e, u))
+                },
+                f,
+            ),
+            (Some(k), KernelPath::Batched(isa)) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, _, scatter| {
+                    let chunk = batch::LinearChunk {
+                        kernel: k,
+                        formulation,
+                        u,
+                        elements,
+                        forces,
+                        scatter,
+                    };
+                    dispatch(isa, chunk)
+                },
+                f,
+            ),
+            (None, KernelPath::Scalar) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    let chunk = (elements, forces, states, scatter);
+                    each_element(chunk, F::POINTS, nodes, |e, states| {
+                        let ue = gather(formulation.nodes(e), u);
+                        screen
+                            .and_then(|s| s.element(formulation, material, e, &ue, states))
+                            .unwrap_or_else(|| {
+                                response(formulation, material, e, &ue, (states, true))
+                            })
+                    })
+                },
+                f,
+            ),
+            (None, KernelPath::Batched(isa)) => assembly.assemble(
+                states,
+                F::POINTS,
+                |elements, forces, states, scatter| {
+                    // A chunk that never yielded and stays elastic: its screen alone.
+                    if let Some(screen) = screen {
+                        let whole = batch::ScreenedChunk {
+                            screen,
+                            formulation,
+                            material,
+                            u,
+                            elements: elements.clone(),
+                            forces: &mut *forces,
+                            states: &*states,
+                            scatter,
+                        };
+                        let first = elements.start;
+                        if let Some(energy) = screen.try_whole(first, || dispatch(isa, whole)) {
+                            return energy;
+                        }
+                    }
+                    let chunk = batch::StressPathChunk {
+                        formulation,
+                        material,
+                        screen,
+                        rows: scatter.rows(),
+                        u,
+                        elements: elements.clone(),
+                        forces,
+                        states,
+                    };
+                    // Scattered by a kernel of its own: compiled into the stress path's (as
+                    // the stiffness product's is), the paper plastic run took 1.04 s instead
+                    // of 0.72 s on one thread (2026-11-25).
+                    let energy = dispatch(isa, chunk);
+                    let forces = &*forces;
+                    dispatch(
+                        isa,
+                        ScatterChunk {
+                            scatter,
+                            elements,
+                            forces,
+                            nodes,
+                        },
+                    );
+                    energy
+                },
+                f,
+            ),
+        }
+    }
+}
+
+/// One non-generic function per (formulation, material) pair, and the lookup by type.
+macro_rules! compiled {
+    ($($name:ident: $f:ty, $m:ty;)*) => {
+        $(
+            #[inline(never)]
+            fn $name(model: &mut PlateModel<$f, $m>, u: &[f64], f: &mut [f64]) -> ElementEnergy {
+                model.forces_here(u, f)
+            }
+        )*
+
+        /// The internal forces by the function compiled here for `model`'s pair, if any.
+        #[inline(always)]
+        fn compiled_here<F: Formulation, M: ConstitutiveModel>(
+            model: &mut PlateModel<F, M>,
+            u: &[f64],
+            f: &mut [f64],
+        ) -> Option<ElementEnergy> {
+            let model: &mut dyn Any = model;
+            $(
+                if let Some(model) = model.downcast_mut::<PlateModel<$f, $m>>() {
+                    return Some($name(model, u, f));
+                }
+            )*
+            None
+        }
+    };
+}
+
+compiled! {
+    full_elastic: FullQ4, Elastic;
+    full_plastic: FullQ4, VonMises;
+    selective_elastic: SelectiveQ4, Elastic;
+    selective_plastic: SelectiveQ4, VonMises;
+    one_point_elastic: OnePointQ4, Elastic;
+    one_point_plastic: OnePointQ4, VonMises;
+}
+
+#[cfg(test)]
+mod tests {
+    //! Every (formulation, material) pair the solver builds takes the function compiled here
+    //! (else each binary would compile its own copy, as before), with the generic body's bits.
+    use super::*;
+    use crate::mesh::test_plate_mesh;
+    use crate::physics::material::test_von_mises;
+
+    /// Two models made by `make`: one through the function compiled here, one through the
+    /// generic body, at a field that yields some points; the same forces and energies.
+    fn check<F: Formulation, M: ConstitutiveModel>(make: impl Fn() -> PlateModel<F, M>) {
+        let (mut here, mut generic) = (make(), make());
+        let u: Vec<f64> = (0..here.inverse_mass.len())
+            .map(|i| 1e-4 * (i as f64 * 0.7).sin())
+            .collect();
+        let (mut f_here, mut f_generic) = (vec![0.0; u.len()], vec![0.0; u.len()]);
+        let energy = compiled_here(&mut here, &u, &mut f_here).expect("a pair compiled here");
+        let expected = generic.forces_here(&u, &mut f_generic);
+        let bits = |f: &[f64]| f.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&f_here), bits(&f_generic));
+        assert_eq!(energy, expected);
+    }
+
+    #[test]
+    fn every_pair_the_solver_builds_is_compiled_here() {
+        let mesh = test_plate_mesh(12, 4, 3.0);
+        let (width, elastic) = (0.02, Elastic::new(207e9, 0.3));
+        let p_modulus = elastic.lambda + 2.0 * elastic.mu;
+        let full = || FullQ4::new(&mesh.mesh, width).expect("a valid mesh");
+        let selective = || SelectiveQ4::new(&mesh.mesh, width).expect("a valid mesh");
+        let one_point = || OnePointQ4::new(&mesh.mesh, width, 0.05, p_modulus).expect("valid");
+        check(|| PlateModel::new(full(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(full(), test_von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(selective(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(selective(), test_von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(one_point(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(one_point(), test_von_mises(), &mesh, 7850.0));
+    }
+}

@@ -1,0 +1,181 @@
+//! The one model factory: element x material x kernel -> a [`PlateModel`], handed to a
+//! [`UseModel`] (the time loop, a benchmark), so the dispatch over the generic element and
+//! material types is written once. [`AnyFormulation`] with [`with_formulation!`] is the one
+//! dispatch over elements alone (static checks that need no material).
+
+use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::scene::{ElementKind, Scene};
+use crate::lanes::simd::KernelPath;
+use crate::mesh::{Mesh, PlateMesh};
+use crate::physics::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::time_loop::integrator::PlateModel;
+
+/// One of the element formulations, chosen at run time.
+pub enum AnyFormulation {
+    Full(FullQ4),
+    Sri(SelectiveQ4),
+    OnePoint(OnePointQ4),
+}
+
+impl AnyFormulation {
+    /// The `kind` formulation on `mesh`, out-of-plane `width` (m); `hourglass` is the
+    /// Flanagan-Belytschko coefficient of `q4-1pt`, scaled by `elastic`'s P-wave modulus.
+    pub fn new(
+        kind: ElementKind,
+        mesh: &Mesh,
+        width: f64,
+        hourglass: f64,
+        elastic: &Elastic,
+    ) -> Result<AnyFormulation> {
+        Ok(match kind {
+            ElementKind::Q4Full => AnyFormulation::Full(FullQ4::new(mesh, width)?),
+            ElementKind::Q4Sri => AnyFormulation::Sri(SelectiveQ4::new(mesh, width)?),
+            ElementKind::Q4OnePoint => AnyFormulation::OnePoint(OnePointQ4::new(
+                mesh,
+                width,
+                hourglass,
+                elastic.p_modulus(),
+            )?),
+        })
+    }
+}
+
+/// `with_formulation!(any, f => body)`: `body` with `f` bound to the concrete formulation
+/// inside an [`AnyFormulation`] (by value, reference or mutable reference, as `any` is).
+#[macro_export]
+macro_rules! with_formulation {
+    ($any:expr, $f:ident => $body:expr) => {
+        match $any {
+            $crate::time_loop::model::AnyFormulation::Full($f) => $body,
+            $crate::time_loop::model::AnyFormulation::Sri($f) => $body,
+            $crate::time_loop::model::AnyFormulation::OnePoint($f) => $body,
+        }
+    };
+}
+
+/// The material model and how the elastic internal forces are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kernel {
+    /// What `simulate` runs: von Mises when the material has plasticity, else [`Kernel::Elastic`].
+    Solver,
+    /// Elastic, by the faster path of the element ([`Formulation::STIFFNESS_MATRIX_PAYS`]):
+    /// precomputed element stiffness matrices for q4-full and q4-sri, the stresses for
+    /// q4-1pt (`impact-bench throughput` kernels, 80 x 16 paper mesh, 1 thread, two runs of
+    /// 2026-11-25 after the one-point element took Flanagan and Belytschko's centroid form:
+    /// q4-1pt 4.7 ns through the stresses against 5.7 ns through `K_e u_e`, whose one-point
+    /// hourglass energy costs a second pass; q4-sri 5.1-5.3 ns through `K_e u_e` against 17.1-17.4
+    /// ns).
+    Elastic,
+    /// Elastic, always with precomputed element stiffness matrices.
+    ElasticStiffnessMatrix,
+    /// Elastic, always through the stresses (strain -> stress -> `B^T s`).
+    ElasticStressPath,
+    /// Von Mises plasticity (the material must have `plasticity`), with the elastic screen
+    /// where the stiffness matrix pays (elements that never yielded and stay elastic take
+    /// `K_e u_e`: [`crate::kernels::elastic_screen`]).
+    Plastic,
+}
+
+/// What to do with a built model, for every element x material combination.
+pub trait UseModel {
+    type Output;
+    fn use_model<F: Formulation, M: ConstitutiveModel>(
+        self,
+        model: PlateModel<F, M>,
+    ) -> Self::Output;
+}
+
+/// Builds the model of `scene` on `mesh` (its element, its material, `kernel`) and hands it
+/// to `user`, with the batched kernels on this processor's best instruction set.
+pub fn build<U: UseModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    user: U,
+) -> Result<U::Output> {
+    build_on(scene, mesh, kernel, KernelPath::fastest(), user)
+}
+
+/// [`build`] with the element kernels on `path` (e.g. [`KernelPath::Scalar`], the reference
+/// the batched kernels are tested and benchmarked against).
+pub fn build_on<U: UseModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    path: KernelPath,
+    user: U,
+) -> Result<U::Output> {
+    let m = &scene.material;
+    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    let formulation = AnyFormulation::new(
+        scene.mesh.element,
+        &mesh.mesh,
+        scene.plate.width,
+        scene.mesh.hourglass,
+        &elastic,
+    )?;
+    let request = Request {
+        scene,
+        mesh,
+        kernel,
+        path,
+    };
+    with_formulation!(formulation, f => with_material(f, request, user))
+}
+
+/// What [`build`] was asked for, handed on to the material stage.
+struct Request<'a> {
+    scene: &'a Scene,
+    mesh: &'a PlateMesh,
+    kernel: Kernel,
+    path: KernelPath,
+}
+
+fn with_material<F: Formulation, U: UseModel>(
+    formulation: F,
+    Request {
+        scene,
+        mesh,
+        kernel,
+        path,
+    }: Request,
+    user: U,
+) -> Result<U::Output> {
+    let m = &scene.material;
+    let plastic = match kernel {
+        Kernel::Solver | Kernel::Plastic => VonMises::new(m),
+        _ => None,
+    };
+    if let Some(plastic) = plastic {
+        let model = PlateModel::new(formulation, plastic, mesh, m.density).with_kernel_path(path);
+        // Elastic points at elastic cost where the stiffness product is cheaper than a plastic
+        // point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not for one point, whose stress
+        // path is the cheaper one).
+        return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
+            model.with_elastic_screen()
+        } else {
+            model
+        }));
+    }
+    if kernel == Kernel::Plastic {
+        return Err(Error::invalid(
+            SourceLocation::file(&scene.source),
+            "material.plasticity",
+            "none",
+            "the plastic kernel needs a material with plasticity",
+        ));
+    }
+    let stiffness_matrix = match kernel {
+        Kernel::ElasticStressPath => false,
+        Kernel::ElasticStiffnessMatrix => true,
+        _ => F::STIFFNESS_MATRIX_PAYS,
+    };
+    let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    let model = PlateModel::new(formulation, elastic, mesh, m.density).with_kernel_path(path);
+    Ok(user.use_model(if stiffness_matrix {
+        model.with_linear_kernel(&elastic)
+    } else {
+        model
+    }))
+}
