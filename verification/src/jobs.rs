@@ -187,14 +187,14 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
     let e0 = s.initial_energy.total();
     metrics.insert("initial_total_energy_J".into(), e0);
     metrics.insert("final_total_energy_J".into(), s.final_energy.total());
-    if let (Some(i), Some(vf)) = (scene.impactor(), s.final_impactor_velocity) {
-        metrics.insert("momentum_change_Ns".into(), i.mass * (i.velocity - vf));
-        metrics.insert("final_momentum_kgmps".into(), i.mass * vf);
+    if let (Some((mass, v0)), Some(vf)) = (scene.impactor_motion(), s.final_impactor_velocity) {
+        metrics.insert("momentum_change_Ns".into(), mass * (v0 - vf));
+        metrics.insert("final_momentum_kgmps".into(), mass * vf);
         metrics.insert(
             "initial_kinetic_J".into(),
-            0.5 * i.mass * i.velocity * i.velocity,
+            0.5 * mass * v0 * v0,
         );
-        for (k, v) in impact_discriminators(i.mass, i.velocity, s.impulse, vf) {
+        for (k, v) in impact_discriminators(mass, v0, s.impulse, vf) {
             metrics.insert(k.into(), v);
         }
     }
@@ -341,6 +341,10 @@ fn load_text(load: &Load) -> String {
             i.nose_radius,
             node_name(i.indentation_datum),
             node_name(i.force_node)
+        ),
+        Load::SurfaceImpactor(i) => format!(
+            "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, in penalty surface contact (penalty scale {})",
+            i.mass, i.velocity, i.nose_radius, i.contact.penalty_scale
         ),
         Load::Traction(t) => format!(
             "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",

@@ -74,7 +74,8 @@ impl Estimate {
             None => steps + 1.0,
         };
         let history_columns = 2
-            + if scene.impactor().is_some() { 3 } else { 0 }
+            + if scene.impactor_motion().is_some() { 3 } else { 0 }
+            + if scene.surface_impactor().is_some() { 2 } else { 0 }
             + 3
             + 5 * scene.output.probes.len()
             + 8;

@@ -192,21 +192,92 @@ pub enum LoadFile {
 }
 
 /// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s
-/// toward the plate, `nose_radius` m, `youngs_modulus` Pa, `poisson_ratio` (-).
+/// toward the plate, `nose_radius` m; `contact` the coupling (default `nodal`: the paper's
+/// contact law at one node, which needs `youngs_modulus` Pa, `poisson_ratio` (-) of the nose and
+/// `contact_law`; `surface`: the rigid nose in penalty contact with the plate's top surface).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ImpactorFile {
     pub mass: Num,
     pub velocity: Num,
     pub nose_radius: Num,
-    pub youngs_modulus: Num,
-    pub poisson_ratio: Num,
-    pub contact_law: ContactLawFile,
     #[serde(default)]
-    pub indentation_datum: MidSpanNode,
+    pub youngs_modulus: Option<Num>,
+    #[serde(default)]
+    pub poisson_ratio: Option<Num>,
+    #[serde(default)]
+    pub contact_law: Option<Spanned<ContactLawFile>>,
+    #[serde(default)]
+    pub indentation_datum: Option<Spanned<MidSpanNode>>,
     /// Node the contact force acts on; defaults to `indentation_datum`.
     #[serde(default)]
-    pub force_node: Option<MidSpanNode>,
+    pub force_node: Option<Spanned<MidSpanNode>>,
+    /// `nodal` (default) | `surface` | `{surface: {penalty_scale}}`.
+    #[serde(default)]
+    pub contact: Option<Spanned<ContactFile>>,
+}
+
+/// How the nose meets the plate: `nodal` (the paper's law at one node) or `surface` (with its
+/// options as `{surface: {...}}`).
+#[derive(Debug)]
+pub enum ContactFile {
+    Nodal,
+    Surface(SurfaceFile),
+}
+
+/// `surface: {penalty_scale}`: the penalty stiffness of each top-surface node as a fraction of
+/// its mass times the largest eigenvalue of its elements (default 0.1, in (0, 1]).
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SurfaceFile {
+    #[serde(default)]
+    pub penalty_scale: Option<Num>,
+}
+
+impl<'de> Deserialize<'de> for ContactFile {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        d.deserialize_any(ContactVisitor)
+    }
+}
+
+/// Reads `nodal`, `surface` or `{surface: {...}}` with plain-word errors.
+struct ContactVisitor;
+
+impl<'de> serde::de::Visitor<'de> for ContactVisitor {
+    type Value = ContactFile;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("`nodal`, `surface` or `{surface: {penalty_scale: ...}}`")
+    }
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<ContactFile, E> {
+        match v {
+            "nodal" => Ok(ContactFile::Nodal),
+            "surface" => Ok(ContactFile::Surface(SurfaceFile::default())),
+            other => Err(E::custom(format!(
+                "unknown contact `{other}`, expected `nodal`, `surface` or `{{surface: {{penalty_scale: ...}}}}`"
+            ))),
+        }
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(
+        self,
+        mut map: A,
+    ) -> std::result::Result<ContactFile, A::Error> {
+        use serde::de::Error as _;
+        let Some(key) = map.next_key::<String>()? else {
+            return Err(A::Error::custom("expected `{surface: {penalty_scale: ...}}`"));
+        };
+        if key != "surface" {
+            return Err(A::Error::custom(format!(
+                "unknown contact `{key}`, expected `surface: {{penalty_scale: ...}}`"
+            )));
+        }
+        let options: Option<SurfaceFile> = map.next_value()?;
+        if let Some(extra) = map.next_key::<String>()? {
+            return Err(A::Error::custom(format!(
+                "`{extra}` next to `surface`: give one contact"
+            )));
+        }
+        Ok(ContactFile::Surface(options.unwrap_or_default()))
+    }
 }
 
 #[derive(Debug, Deserialize)]
@@ -382,9 +453,37 @@ pub struct MeshSettings {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum Load {
+    /// The paper's coupling: the contact law at one node (eq. 21).
     Impactor(Impactor),
+    /// The rigid nose in surface contact (`load.impactor.contact: surface`).
+    SurfaceImpactor(SurfaceImpactor),
     Pulse(Pulse),
     Traction(Traction),
+}
+
+/// The rigid nose in frictionless penalty contact with the plate's top surface (`contact:
+/// surface`, `ALGORITHM.md` section 5b).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceContact {
+    /// Penalty stiffness of a node over its mass times its elements' largest eigenvalue (-).
+    pub penalty_scale: f64,
+}
+
+impl SurfaceContact {
+    pub const DEFAULT_PENALTY_SCALE: f64 = 0.1;
+}
+
+/// The impactor of the surface coupling: a rigid cylinder of radius `nose_radius` that moves
+/// along y only, its force the sum of the penalty forces on the top-surface nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceImpactor {
+    /// kg, whole impactor
+    pub mass: f64,
+    /// m/s toward the plate
+    pub velocity: f64,
+    /// m
+    pub nose_radius: f64,
+    pub contact: SurfaceContact,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -560,6 +659,23 @@ impl Scene {
     pub fn impactor(&self) -> Option<&Impactor> {
         match &self.load {
             Load::Impactor(i) => Some(i),
+            Load::SurfaceImpactor(_) | Load::Pulse(_) | Load::Traction(_) => None,
+        }
+    }
+
+    /// The surface coupling's impactor, if the scene has one.
+    pub fn surface_impactor(&self) -> Option<&SurfaceImpactor> {
+        match &self.load {
+            Load::SurfaceImpactor(i) => Some(i),
+            _ => None,
+        }
+    }
+
+    /// The impactor's mass (kg) and initial velocity (m/s) under either coupling.
+    pub fn impactor_motion(&self) -> Option<(f64, f64)> {
+        match &self.load {
+            Load::Impactor(i) => Some((i.mass, i.velocity)),
+            Load::SurfaceImpactor(i) => Some((i.mass, i.velocity)),
             Load::Pulse(_) | Load::Traction(_) => None,
         }
     }
@@ -900,50 +1016,114 @@ impl Validator<'_> {
                 force: self.check(&p.force, "load.pulse.force", NON_NEGATIVE)?,
                 duration: self.check(&p.duration, "load.pulse.duration", POSITIVE)?,
             }),
-            LoadFile::Impactor(i) => {
-                let f = |name: &str| format!("load.impactor.{name}");
-                let contact_law = match &i.contact_law {
-                    ContactLawFile::Paper { length_unit } => ContactLawChoice::Paper {
-                        length_unit: self.check(
-                            length_unit,
-                            &f("contact_law.paper.length_unit"),
-                            POSITIVE,
-                        )?,
-                    },
-                    ContactLawFile::Johnson { datum_depth } => {
-                        let depth = self.check(
-                            datum_depth,
-                            &f("contact_law.johnson.datum_depth"),
-                            POSITIVE,
-                        )?;
-                        if depth > plate.thickness {
-                            return self.fail(
-                                datum_depth,
-                                &f("contact_law.johnson.datum_depth"),
-                                depth,
-                                format!(
-                                    "must not exceed the plate thickness {} m",
-                                    plate.thickness
-                                ),
-                            );
-                        }
-                        ContactLawChoice::Johnson { datum_depth: depth }
-                    }
-                };
-                Load::Impactor(Impactor {
-                    mass: self.check(&i.mass, &f("mass"), POSITIVE)?,
-                    velocity: self.check(&i.velocity, &f("velocity"), POSITIVE)?,
-                    nose_radius: self.check(&i.nose_radius, &f("nose_radius"), POSITIVE)?,
-                    youngs_modulus: self.check(
-                        &i.youngs_modulus,
-                        &f("youngs_modulus"),
-                        POSITIVE,
-                    )?,
-                    poisson_ratio: self.check(&i.poisson_ratio, &f("poisson_ratio"), POISSON)?,
-                    contact_law,
-                    indentation_datum: i.indentation_datum,
-                    force_node: i.force_node.unwrap_or(i.indentation_datum),
-                })
+            LoadFile::Impactor(i) => self.impactor(&i, plate)?,
+        })
+    }
+
+    /// `load.impactor` under its coupling: the nodal one's law and nodes, or the surface
+    /// one's options; the other coupling's keys are refused.
+    fn impactor(&self, i: &ImpactorFile, plate: &Plate) -> Result<Load> {
+        let f = |name: &str| format!("load.impactor.{name}");
+        let (mass, velocity, nose_radius) = (
+            self.check(&i.mass, &f("mass"), POSITIVE)?,
+            self.check(&i.velocity, &f("velocity"), POSITIVE)?,
+            self.check(&i.nose_radius, &f("nose_radius"), POSITIVE)?,
+        );
+        let surface = match &i.contact {
+            Some(Spanned {
+                value: ContactFile::Surface(options),
+                ..
+            }) => options,
+            _ => {
+                return Ok(Load::Impactor(Impactor {
+                    mass,
+                    velocity,
+                    nose_radius,
+                    youngs_modulus: self.required(&i.youngs_modulus, i, "youngs_modulus", POSITIVE)?,
+                    poisson_ratio: self.required(&i.poisson_ratio, i, "poisson_ratio", POISSON)?,
+                    contact_law: self.contact_law(i, plate)?,
+                    indentation_datum: i.indentation_datum.as_ref().map_or_else(MidSpanNode::default, |d| d.value),
+                    force_node: i.force_node.as_ref().or(i.indentation_datum.as_ref()).map_or_else(MidSpanNode::default, |d| d.value),
+                }))
+            }
+        };
+        self.refuse_nodal_keys(i)?;
+        let penalty_scale = match &surface.penalty_scale {
+            None => SurfaceContact::DEFAULT_PENALTY_SCALE,
+            Some(v) => self.check(
+                v,
+                &f("contact.surface.penalty_scale"),
+                Rule {
+                    allowed: "must be a number in (0, 1] (the penalty stiffness of a node over its mass times its elements' largest eigenvalue; 1 shortens the stable step by 1/sqrt(2))",
+                    ok: |x| x > 0.0 && x <= 1.0,
+                },
+            )?,
+        };
+        Ok(Load::SurfaceImpactor(SurfaceImpactor {
+            mass,
+            velocity,
+            nose_radius,
+            contact: SurfaceContact { penalty_scale },
+        }))
+    }
+
+    /// A key the nodal coupling needs: missing is an error at the impactor's `mass`.
+    fn required(&self, value: &Option<Num>, i: &ImpactorFile, key: &str, rule: Rule) -> Result<f64> {
+        let field = format!("load.impactor.{key}");
+        match value {
+            Some(v) => self.check(v, &field, rule),
+            None => self.fail(
+                &i.mass,
+                &field,
+                "missing",
+                format!("the nodal contact coupling (the default `contact: nodal`) needs the nose's {key} ({}); or use `contact: surface`, whose nose is rigid", if key == "youngs_modulus" { "Pa" } else { "-" }),
+            ),
+        }
+    }
+
+    /// The surface coupling's nose is rigid and its force comes from the top surface: the
+    /// nodal coupling's keys would do nothing, so they are refused.
+    fn refuse_nodal_keys(&self, i: &ImpactorFile) -> Result<()> {
+        let why = "belongs to the nodal coupling; with `contact: surface` the nose is rigid and its force comes from the plate's top surface: remove it";
+        let given: [(&str, Option<SourceLocation>); 5] = [
+            ("youngs_modulus", i.youngs_modulus.as_ref().map(|v| self.at(v))),
+            ("poisson_ratio", i.poisson_ratio.as_ref().map(|v| self.at(v))),
+            ("contact_law", i.contact_law.as_ref().map(|v| self.at(v))),
+            ("indentation_datum", i.indentation_datum.as_ref().map(|v| self.at(v))),
+            ("force_node", i.force_node.as_ref().map(|v| self.at(v))),
+        ];
+        match given.into_iter().find_map(|(k, at)| at.map(|at| (k, at))) {
+            Some((key, at)) => Err(Error::invalid(at, format!("load.impactor.{key}"), "given", why)),
+            None => Ok(()),
+        }
+    }
+
+    /// The nodal coupling's contact law (eq. 4 or Johnson's), required.
+    fn contact_law(&self, i: &ImpactorFile, plate: &Plate) -> Result<ContactLawChoice> {
+        let f = |name: &str| format!("load.impactor.{name}");
+        let Some(law) = &i.contact_law else {
+            return self.fail(
+                &i.mass,
+                &f("contact_law"),
+                "missing",
+                "the nodal contact coupling (the default `contact: nodal`) needs `contact_law: {paper: {length_unit: m}}` or `{johnson: {datum_depth: m}}`; or use `contact: surface`",
+            );
+        };
+        Ok(match &law.value {
+            ContactLawFile::Paper { length_unit } => ContactLawChoice::Paper {
+                length_unit: self.check(length_unit, &f("contact_law.paper.length_unit"), POSITIVE)?,
+            },
+            ContactLawFile::Johnson { datum_depth } => {
+                let depth = self.check(datum_depth, &f("contact_law.johnson.datum_depth"), POSITIVE)?;
+                if depth > plate.thickness {
+                    return self.fail(
+                        datum_depth,
+                        &f("contact_law.johnson.datum_depth"),
+                        depth,
+                        format!("must not exceed the plate thickness {} m", plate.thickness),
+                    );
+                }
+                ContactLawChoice::Johnson { datum_depth: depth }
             }
         })
     }

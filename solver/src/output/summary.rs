@@ -79,18 +79,35 @@ pub struct Summary {
     pub loop_time: f64,
     /// Time-loop wall time per element and step, ns.
     pub ns_per_element_step: f64,
+    /// Surface coupling: the stable step with the penalty springs over the plate's own
+    /// (`1/sqrt(1 + penalty_scale)` at least).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_step_factor: Option<f64>,
+    /// Surface coupling: the largest contact half-width from the nose's axis, m.
+    #[serde(
+        rename = "max_contact_half_width_m",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub max_contact_half_width: Option<f64>,
+    /// Surface coupling: the most nodes in contact at once (whole plate).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_nodes_in_contact: Option<f64>,
 }
 
 impl Summary {
     pub fn new(scene: &Scene, mesh: &PlateMesh, t: &RunTotals, timing: Timing) -> Summary {
         let n_elements = mesh.mesh.elements.len();
         let impactor = scene.impactor();
-        let impulse_momentum_error = impactor
+        let impulse_momentum_error = scene
+            .impactor_motion()
             .zip(t.final_impactor_velocity)
-            .map(|(i, vf)| (t.impulse - i.mass * (i.velocity - vf)).abs() / (i.mass * i.velocity));
+            .map(|((m, v0), vf)| (t.impulse - m * (v0 - vf)).abs() / (m * v0));
         let contact_law = match &scene.load {
             Load::Pulse(_) => "pulse".to_string(),
             Load::Traction(_) => "traction".to_string(),
+            Load::SurfaceImpactor(i) => {
+                format!("surface(penalty_scale={})", i.contact.penalty_scale)
+            }
             Load::Impactor(i) => match i.contact_law {
                 ContactLawChoice::Paper { length_unit } => {
                     format!("paper(length_unit={length_unit} m)")
@@ -131,6 +148,9 @@ impl Summary {
             loop_time: timing.loop_s,
             ns_per_element_step: 1e9 * timing.loop_s
                 / (n_elements as f64 * t.n_steps.max(1) as f64),
+            contact_step_factor: t.max_patch.map(|_| t.dt_critical / t.dt_plate),
+            max_contact_half_width: t.max_patch.map(|p| p[0]),
+            max_nodes_in_contact: t.max_patch.map(|p| p[1]),
         }
     }
 }

@@ -27,7 +27,7 @@ impl PrescribedLoad {
     pub fn from_scene(load: &Load, plate: &Plate, mesh: &PlateMesh) -> Option<PrescribedLoad> {
         let s = mesh.symmetry_factor;
         match load {
-            Load::Impactor(_) => None,
+            Load::Impactor(_) | Load::SurfaceImpactor(_) => None,
             Load::Pulse(p) => Some(PrescribedLoad {
                 pattern: vec![(2 * mesh.top + 1, -1.0 / s)],
                 magnitude: p.force,

@@ -1,7 +1,8 @@
 //! The physics: the elements ([`element`], eqs. 13-15, on the shape-function derivatives of
 //! [`geometry`] and [`centroid`]), the materials ([`material`], eq. 16), the rigid impactor
 //! ([`impactor`], eqs. 19-20), its contact law and the solve of eq. (21) ([`contact`], with the
-//! reasons a solve fails in [`contact_failure`]), and prescribed loads ([`load`]).
+//! reasons a solve fails in [`contact_failure`]), the rigid nose in surface contact
+//! ([`nose_contact`]), and prescribed loads ([`load`]).
 
 pub mod centroid;
 pub mod contact;
@@ -11,3 +12,4 @@ pub mod geometry;
 pub mod impactor;
 pub mod load;
 pub mod material;
+pub mod nose_contact;

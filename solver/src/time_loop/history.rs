@@ -121,6 +121,10 @@ pub struct RunTotals {
     pub max_downward_bottom: f64,
     pub contact_intervals: Vec<[f64; 2]>,
     pub final_impactor_velocity: Option<f64>,
+    /// Surface coupling: the largest contact half-width (m) and number of nodes in contact.
+    pub max_patch: Option<[f64; 2]>,
+    /// The stable step of the plate alone (without contact springs), s.
+    pub dt_plate: f64,
     pub max_von_mises: Vec<(String, f64)>,
     pub max_balance_error: f64,
     pub dt: f64,
@@ -173,6 +177,8 @@ pub(crate) struct Sample<'a> {
     pub force: f64,
     /// Indentation, impactor displacement (m) and velocity (m/s); impact scenes only.
     pub impactor: Option<[f64; 3]>,
+    /// Contact half-width (m) and nodes in contact; surface coupling only.
+    pub patch: Option<[f64; 2]>,
     /// Mid-span `u_y` at the top, mid-plane and bottom, m.
     pub uy: [f64; 3],
     pub energies: &'a Energies,
@@ -210,6 +216,8 @@ impl<'s> Recorder<'s> {
             max_downward_bottom: 0.0,
             contact_intervals: Vec::new(),
             final_impactor_velocity: None,
+            max_patch: scene.surface_impactor().map(|_| [0.0, 0.0]),
+            dt_plate: dt_critical,
             max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
             max_balance_error: 0.0,
             dt,
@@ -265,6 +273,9 @@ impl<'s> Recorder<'s> {
         let [top, mid, bottom] = at.uy;
         self.totals.max_downward_mid = self.totals.max_downward_mid.min(mid);
         self.totals.max_downward_bottom = self.totals.max_downward_bottom.min(bottom);
+        if let (Some(max), Some(patch)) = (&mut self.totals.max_patch, at.patch) {
+            *max = [max[0].max(patch[0]), max[1].max(patch[1])];
+        }
         let want_row = self.rows.due(n, dt) || last;
         for (p, max) in self.probes.iter().zip(self.totals.max_von_mises.iter_mut()) {
             max.1 = max.1.max(von_mises(&stress(p)));
@@ -279,6 +290,9 @@ impl<'s> Recorder<'s> {
         if let Some(impactor) = at.impactor {
             row.extend(impactor);
         }
+        if let Some(patch) = at.patch {
+            row.extend(patch);
+        }
         row.extend([top, mid, bottom]);
         for p in &self.probes {
             let st = stress(p);
@@ -287,6 +301,11 @@ impl<'s> Recorder<'s> {
         row.extend(at.energies.as_row());
         row.push(at.imbalance); // divided by the run's largest energy at the end
         self.sink.row(row)
+    }
+
+    /// The stable step of the plate without the contact's springs, s.
+    pub(crate) fn plate_step(&mut self, dt_plate: f64) {
+        self.totals.dt_plate = dt_plate;
     }
 
     /// Adds one step's trapezoid `(F_n + F_{n+1}) dt / 2` to the impulse, N s.
@@ -329,7 +348,7 @@ impl<'s> Recorder<'s> {
 /// The history's columns, in `ALGORITHM.md` section 8's order.
 pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
     let mut c: Vec<String> = vec!["time_s".into(), "contact_force_N".into()];
-    if scene.impactor().is_some() {
+    if scene.impactor_motion().is_some() {
         c.extend(
             [
                 "indentation_m",
@@ -338,6 +357,9 @@ pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
             ]
             .map(String::from),
         );
+    }
+    if scene.surface_impactor().is_some() {
+        c.extend(["contact_half_width_m", "nodes_in_contact"].map(String::from));
     }
     c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
     for p in probes {

@@ -23,6 +23,7 @@ use crate::time_loop::history::{
     locate_probes, steps_to, HistorySink, Probe, Recorder, RunTotals, Sample, Schedule, StopReason,
 };
 use crate::time_loop::stable_step::{self, Estimate, Spring};
+use crate::time_loop::surface_coupling::SurfaceImpact;
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this
 /// multiple of the largest energy the run was given.
@@ -218,13 +219,20 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     observer: &mut dyn Observer,
     sink: &mut dyn HistorySink,
 ) -> Result<RunTotals> {
-    let dt_critical = critical_step(scene, mesh, model);
+    let surface = scene
+        .surface_impactor()
+        .map(|spec| SurfaceImpact::new(spec, mesh, model, scene.material.density));
+    let dt_plate = critical_step(scene, mesh, model);
+    let dt_critical = surface
+        .as_ref()
+        .map_or(dt_plate, |c| c.stable_step(dt_plate, &model.mass));
     let dt = chosen_step(scene, dt_critical)?;
     let probes = locate_probes(scene, mesh, &model.formulation)?;
     let clock = Clock::new(scene, dt);
     let mut watch = Watch::new(scene, observer, &clock);
     let mut recorder = Recorder::new(scene, probes, sink, dt, dt_critical)?;
-    let mut stepper = Stepper::new(scene, mesh, model, dt, dt_critical);
+    recorder.plate_step(dt_plate);
+    let mut stepper = Stepper::new(scene, mesh, model, dt, dt_critical, surface);
     let mut n: u64 = 0;
     loop {
         let t = n as f64 * dt;
@@ -396,6 +404,8 @@ struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     /// Symmetry factor `s`.
     s: f64,
     impact: Option<Impact<'a>>,
+    /// The surface coupling's nose and impactor.
+    surface: Option<SurfaceImpact>,
     prescribed: Option<PrescribedLoad>,
     /// Node whose `u_y` the force acts on.
     force_node: usize,
@@ -425,6 +435,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         model: &'a mut PlateModel<F, M>,
         dt: f64,
         dt_critical: f64,
+        surface: Option<SurfaceImpact>,
     ) -> Self {
         let spec = scene.impactor();
         let datum = spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
@@ -445,7 +456,8 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             prescribed: PrescribedLoad::from_scene(&scene.load, &scene.plate, mesh),
             force_node,
             datum,
-            energy_consistent: force_node == datum,
+            energy_consistent: force_node == datum || surface.is_some(),
+            surface,
             u: vec![0.0; ndof],
             v: vec![0.0; ndof],
             f_int: vec![0.0; ndof],
@@ -471,9 +483,10 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let (s, dt) = (self.s, self.dt);
         let element_energy = self.model.internal_forces(&self.u, &mut self.f_int);
         self.plastic_work += s * element_energy.plastic_work;
-        match &self.prescribed {
-            Some(load) => load.subtract_from(applied, &mut self.f_int),
-            None => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
+        match (&self.prescribed, &self.surface) {
+            (Some(load), _) => load.subtract_from(applied, &mut self.f_int),
+            (None, Some(surface)) => surface.subtract_from(&mut self.f_int),
+            (None, None) => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
         }
         let half = if n == 0 { 0.5 } else { 1.0 };
         let update = VelocityUpdate {
@@ -486,18 +499,28 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
         Energies {
             plate_kinetic: if n > 0 { 0.5 * s * twice_kinetic } else { 0.0 },
-            impactor_kinetic: self
-                .impact
-                .as_ref()
-                .map_or(0.0, |i| i.body.kinetic_energy()),
+            impactor_kinetic: self.impactor_kinetic(),
             strain: s * element_energy.strain,
             plastic_work: self.plastic_work,
             hourglass: s * element_energy.hourglass,
-            contact: self
-                .impact
-                .as_ref()
-                .map_or(0.0, |i| i.law.energy(self.force)),
+            contact: match (&self.impact, &self.surface) {
+                (Some(i), _) => i.law.energy(self.force),
+                (None, Some(surface)) => surface.energy(),
+                (None, None) => 0.0,
+            },
             external_work: self.external_work,
+        }
+    }
+
+    /// The impactor's kinetic energy at `t_n`, J (0 without one).
+    fn impactor_kinetic(&self) -> f64 {
+        match (&self.impact, &self.surface) {
+            (Some(i), _) => i.body.kinetic_energy(),
+            (None, Some(surface)) => {
+                let v = surface.body.velocity(self.dt, surface.force());
+                0.5 * surface.body.mass * v * v
+            }
+            (None, None) => 0.0,
         }
     }
 
@@ -559,13 +582,16 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         imbalance: f64,
     ) -> Sample<'e> {
         let uy = |node: usize| self.u[2 * node + 1];
+        let surface = self.surface.as_ref();
         Sample {
             t,
             force: applied,
-            impactor: self
-                .impact
-                .as_ref()
-                .map(|i| [i.alpha, i.body.displacement, i.body.velocity]),
+            impactor: match (&self.impact, surface) {
+                (Some(i), _) => Some([i.alpha, i.body.displacement, i.body.velocity]),
+                (None, Some(c)) => Some(c.motion(self.dt, uy(self.mesh.top))),
+                (None, None) => None,
+            },
+            patch: surface.map(SurfaceImpact::patch),
             uy: [uy(self.mesh.top), uy(self.mesh.mid), uy(self.mesh.bottom)],
             energies,
             imbalance,
@@ -592,6 +618,10 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             dt,
         };
         dispatch(self.model.kernel_path.isa(), displace);
+        if let Some(surface) = &mut self.surface {
+            self.force = surface.advance(dt, &self.u);
+            return Ok(self.force);
+        }
         let next_force = match &mut self.impact {
             Some(impact) => {
                 let delta_c = -self.u[2 * self.datum + 1];
