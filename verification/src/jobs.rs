@@ -343,8 +343,8 @@ fn load_text(load: &Load) -> String {
             node_name(i.force_node)
         ),
         Load::SurfaceImpactor(i) => format!(
-            "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, in penalty surface contact (penalty scale {})",
-            i.mass, i.velocity, i.nose_radius, i.contact.penalty_scale
+            "rigid impactor m = {} kg, v0 = {} m/s, r = {} m, in surface contact ({:?} enforcement, penalty scale {})",
+            i.mass, i.velocity, i.nose_radius, i.contact.enforcement, i.contact.penalty_scale
         ),
         Load::Traction(t) => format!(
             "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",

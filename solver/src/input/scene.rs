@@ -225,13 +225,27 @@ pub enum ContactFile {
     Surface(SurfaceFile),
 }
 
-/// `surface: {penalty_scale}`: the penalty stiffness of each top-surface node as a fraction of
-/// its mass times the largest eigenvalue of its elements (default 0.1, in (0, 1]).
+/// `surface: {enforcement, penalty_scale}`: `kinematic` (default) or `penalty`; with
+/// `penalty`, the stiffness of each top-surface node as a fraction of its mass times the
+/// largest eigenvalue of its elements (default 0.1, in (0, 1]).
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SurfaceFile {
     #[serde(default)]
+    pub enforcement: Option<Spanned<Enforcement>>,
+    #[serde(default)]
     pub penalty_scale: Option<Num>,
+}
+
+/// How the surface coupling keeps the nodes out of the nose.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Enforcement {
+    /// Predictor-corrector: the forces that put the predicted nodes back on the surface.
+    #[default]
+    Kinematic,
+    /// A spring `k_i` on each node that penetrates.
+    Penalty,
 }
 
 impl<'de> Deserialize<'de> for ContactFile {
@@ -465,7 +479,9 @@ pub enum Load {
 /// surface`, `ALGORITHM.md` section 5b).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfaceContact {
-    /// Penalty stiffness of a node over its mass times its elements' largest eigenvalue (-).
+    pub enforcement: Enforcement,
+    /// Penalty stiffness of a node over its mass times its elements' largest eigenvalue (-);
+    /// used by the penalty enforcement only.
     pub penalty_scale: f64,
 }
 
@@ -1048,8 +1064,17 @@ impl Validator<'_> {
             }
         };
         self.refuse_nodal_keys(i)?;
+        let enforcement = surface.enforcement.as_ref().map_or_else(Enforcement::default, |e| e.value);
         let penalty_scale = match &surface.penalty_scale {
             None => SurfaceContact::DEFAULT_PENALTY_SCALE,
+            Some(v) if enforcement == Enforcement::Kinematic => {
+                return self.fail(
+                    v,
+                    &f("contact.surface.penalty_scale"),
+                    v.value,
+                    "is the penalty enforcement's: give `enforcement: penalty` with it, or remove it (the kinematic enforcement has no stiffness)",
+                )
+            }
             Some(v) => self.check(
                 v,
                 &f("contact.surface.penalty_scale"),
@@ -1063,7 +1088,10 @@ impl Validator<'_> {
             mass,
             velocity,
             nose_radius,
-            contact: SurfaceContact { penalty_scale },
+            contact: SurfaceContact {
+                enforcement,
+                penalty_scale,
+            },
         }))
     }
 

@@ -5,7 +5,9 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::input::scene::{ContactLawChoice, ElementKind, Load, MidSpanNode, Model, Scene};
+use crate::input::scene::{
+    ContactLawChoice, ElementKind, Enforcement, Load, MidSpanNode, Model, Scene,
+};
 use crate::mesh::PlateMesh;
 use crate::time_loop::energy::Energies;
 use crate::time_loop::history::{RunTotals, StopReason};
@@ -105,9 +107,12 @@ impl Summary {
         let contact_law = match &scene.load {
             Load::Pulse(_) => "pulse".to_string(),
             Load::Traction(_) => "traction".to_string(),
-            Load::SurfaceImpactor(i) => {
-                format!("surface(penalty_scale={})", i.contact.penalty_scale)
-            }
+            Load::SurfaceImpactor(i) => match i.contact.enforcement {
+                Enforcement::Kinematic => "surface(kinematic)".to_string(),
+                Enforcement::Penalty => {
+                    format!("surface(penalty, penalty_scale={})", i.contact.penalty_scale)
+                }
+            },
             Load::Impactor(i) => match i.contact_law {
                 ContactLawChoice::Paper { length_unit } => {
                     format!("paper(length_unit={length_unit} m)")

@@ -75,6 +75,11 @@ impl CentralDifferenceImpactor {
         }
     }
 
+    /// The displacement at `t_{n+1}` if no force acted at `t_n`, m.
+    pub fn free_displacement(&self, dt: f64) -> f64 {
+        self.displacement + dt * self.half_step_velocity
+    }
+
     /// From `t_n` to `t_{n+1}` under `F_n` (N).
     pub fn advance(&mut self, dt: f64, force: f64) {
         let h = if self.started { dt } else { 0.5 * dt };

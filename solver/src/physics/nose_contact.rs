@@ -30,8 +30,8 @@ pub struct SurfaceNode {
 pub struct NoseSurface {
     /// The nose's axis, m.
     pub center_x: f64,
-    /// y of the axis before the impactor moves (`h + R`), m.
-    pub center_y0: f64,
+    /// y of the top surface (`h`), m: the nose's lowest point before the impactor moves.
+    pub top: f64,
     /// m
     pub radius: f64,
     pub nodes: Vec<SurfaceNode>,
@@ -91,10 +91,26 @@ impl NoseSurface {
         let top = mesh.mesh.coords[first][1];
         NoseSurface {
             center_x,
-            center_y0: top + radius,
+            top,
             radius,
             nodes,
         }
+    }
+
+    /// Node `n`'s penetration `g = R - |d|` (m) at displacement `u` (m) with the impactor
+    /// moved down by `delta` (m), with `d` (node minus nose centre, m) and `|d|`. Written as
+    /// `g = (2 e R - e^2 - d_x^2) / (R + |d|)`, `e = (y - h) + u_y + delta` the node's depth below
+    /// the nose's lowest point, so that no difference of two numbers near `R` is taken: the
+    /// round-off is that of `e` and `d_x`, not of `R`.
+    #[inline]
+    pub fn gap(&self, n: &SurfaceNode, u: [f64; 2], delta: f64) -> (f64, [f64; 2], f64) {
+        let r = self.radius;
+        let dx = (n.x - self.center_x) + u[0];
+        let e = (n.y - self.top) + u[1] + delta;
+        let dy = e - r;
+        let distance = (dx * dx + dy * dy).sqrt();
+        let g = (2.0 * e * r - e * e - dx * dx) / (r + distance);
+        (g, [dx, dy], distance)
     }
 
     /// The largest `k_i / m_i` of the nodes, (rad/s)^2: what the penalty adds at most to the
@@ -109,18 +125,13 @@ impl NoseSurface {
     /// The contact forces at displacements `u` (m, 2 per node) with the impactor moved down by
     /// `delta` (m), into `out` (its buffers reused: no allocation after the first call).
     pub fn evaluate(&self, u: &[f64], delta: f64, out: &mut NoseForces) {
-        let (cx, cy) = (self.center_x, self.center_y0 - delta);
         out.on_node.clear();
         out.total = 0.0;
         out.energy = 0.0;
         out.in_contact = 0;
         out.half_width = 0.0;
         for n in &self.nodes {
-            let px = n.x + u[2 * n.node];
-            let py = n.y + u[2 * n.node + 1];
-            let (dx, dy) = (px - cx, py - cy);
-            let distance = (dx * dx + dy * dy).sqrt();
-            let g = self.radius - distance;
+            let (g, [dx, dy], distance) = self.gap(n, [u[2 * n.node], u[2 * n.node + 1]], delta);
             if g <= 0.0 || distance == 0.0 {
                 out.on_node.push([0.0, 0.0]);
                 continue;
@@ -136,6 +147,118 @@ impl NoseSurface {
     }
 }
 
+/// Reused buffers of [`NoseSurface::kinematic`] (no allocation after the first step).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct KinematicScratch {
+    /// Predicted penetration, m.
+    g: Vec<f64>,
+    /// Unit outward normal at the predicted position.
+    normal: Vec<[f64; 2]>,
+    /// `n . M^-1 n`, 1/kg (0 for a node that cannot move along n).
+    mobility: Vec<f64>,
+    active: Vec<bool>,
+}
+
+/// The most active-set passes of the kinematic solve (each pass changes the set or ends it;
+/// the set is monotone in the recoil sum, so a handful suffice; the bound only guards).
+const MAX_ACTIVE_SET_PASSES: usize = 64;
+
+impl NoseSurface {
+    /// Kinematic enforcement (predictor-corrector, as Taylor and Flanagan's PRONTO 2D and
+    /// Abaqus/Explicit's kinematic contact pairs): the forces `lambda_i n_i` at `t_n` that put
+    /// back on the nose's surface every node the contact-free step would push into it, the
+    /// impactor's recoil included. With `g_i` the predicted penetration at `t_{n+1}`, `n_i`
+    /// the outward normal there, `w_i = n_i . M_i^-1 n_i` and `a_i = n_i,y`, the linearised
+    /// conditions `g_i = c [w_i lambda_i + r a_i sum_j a_j lambda_j]` (`c = dt h`: a force at
+    /// `t_n` moves a node by `c f / m` at `t_{n+1}`; `r = s / m_impactor`) on the active set,
+    /// `lambda_i = 0` off it, `lambda >= 0`: the matrix is diagonal plus rank one, so with
+    /// `S = sum a_j lambda_j` every `lambda_i = (g_i / c - r a_i S) / w_i` and `S` solves one
+    /// scalar equation (Sherman-Morrison); a node is active when its `lambda_i > 0`.
+    ///
+    /// `predicted[i]`: candidate `i`'s displacement at `t_{n+1}` without contact, m;
+    /// `inverse_mass[i]`: its `(1/m_x, 1/m_y)` (0 on a fixed dof), 1/kg; `delta`: the
+    /// impactor's predicted displacement, m.
+    #[allow(clippy::too_many_arguments)]
+    pub fn kinematic(
+        &self,
+        predicted: &[[f64; 2]],
+        inverse_mass: &[[f64; 2]],
+        delta: f64,
+        recoil: f64,
+        c: f64,
+        scratch: &mut KinematicScratch,
+        out: &mut NoseForces,
+    ) {
+        self.predict(predicted, inverse_mass, delta, scratch);
+        let KinematicScratch { g, normal, mobility, active } = scratch;
+        let mut sum = 0.0;
+        for _ in 0..MAX_ACTIVE_SET_PASSES {
+            let (mut num, mut den) = (0.0, 1.0);
+            for i in 0..g.len() {
+                if active[i] {
+                    let a = normal[i][1];
+                    num += a * g[i] / (c * mobility[i]);
+                    den += recoil * a * a / mobility[i];
+                }
+            }
+            sum = num / den;
+            let mut changed = false;
+            for i in 0..g.len() {
+                let now = mobility[i] > 0.0 && g[i] / c - recoil * normal[i][1] * sum > 0.0;
+                changed |= now != active[i];
+                active[i] = now;
+            }
+            if !changed {
+                break;
+            }
+        }
+        out.on_node.clear();
+        (out.total, out.energy, out.in_contact, out.half_width) = (0.0, 0.0, 0, 0.0);
+        for (i, node) in self.nodes.iter().enumerate() {
+            if !active[i] {
+                out.on_node.push([0.0, 0.0]);
+                continue;
+            }
+            let lambda = (g[i] / c - recoil * normal[i][1] * sum) / mobility[i];
+            let f = [lambda * normal[i][0], lambda * normal[i][1]];
+            out.on_node.push(f);
+            out.total -= f[1];
+            out.in_contact += 1;
+            let dx = (node.x - self.center_x) + predicted[i][0];
+            out.half_width = out.half_width.max(dx.abs());
+        }
+    }
+
+    /// The predicted penetrations, normals and mobilities; the nodes that penetrate start
+    /// active.
+    fn predict(
+        &self,
+        predicted: &[[f64; 2]],
+        inverse_mass: &[[f64; 2]],
+        delta: f64,
+        scratch: &mut KinematicScratch,
+    ) {
+        scratch.g.clear();
+        scratch.normal.clear();
+        scratch.mobility.clear();
+        scratch.active.clear();
+        for (i, n) in self.nodes.iter().enumerate() {
+            let (g, [dx, dy], distance) = self.gap(n, predicted[i], delta);
+            let normal = if distance > 0.0 {
+                [dx / distance, dy / distance]
+            } else {
+                [0.0, -1.0]
+            };
+            let [im_x, im_y] = inverse_mass[i];
+            let mobility = im_x * normal[0] * normal[0] + im_y * normal[1] * normal[1];
+            scratch.g.push(g);
+            scratch.normal.push(normal);
+            scratch.mobility.push(mobility);
+            scratch.active.push(g > 0.0 && mobility > 0.0);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     //! Against hand-computed geometry: a node pushed below the nose by a known depth takes
@@ -145,7 +268,7 @@ mod tests {
     fn nose() -> NoseSurface {
         NoseSurface {
             center_x: 0.0,
-            center_y0: 1.0,
+            top: 0.0,
             radius: 1.0,
             nodes: vec![
                 SurfaceNode {
@@ -190,5 +313,29 @@ mod tests {
     #[test]
     fn the_spring_eigenvalue_is_the_largest_stiffness_over_mass() {
         assert_eq!(nose().largest_spring_eigenvalue(&[2.0, 2.0]), 10.0);
+    }
+
+    #[test]
+    fn the_kinematic_forces_put_the_predicted_nodes_on_the_surface() {
+        // Node 0 predicted 0.1 into the nose (straight below its axis), node 1 outside; a
+        // 1 kg node, c = 0.01 s^2, a light impactor (recoil r = 0.5 /kg): lambda solves
+        // g = c (lambda / m + r a^2 lambda) with a = -1: lambda = 0.1 / (0.01 * 1.5).
+        let mut out = NoseForces::default();
+        let mut scratch = KinematicScratch::default();
+        let predicted = [[0.0, -0.0], [0.0, 0.0]];
+        let im = [[1.0, 1.0], [1.0, 1.0]];
+        nose().kinematic(&predicted, &im, 0.1, 0.5, 0.01, &mut scratch, &mut out);
+        assert_eq!(out.in_contact, 1);
+        let lambda = 0.1 / (0.01 * 1.5);
+        assert!((out.on_node[0][1] + lambda).abs() < 1e-9 * lambda, "{:?}", out.on_node);
+        assert_eq!(out.on_node[1], [0.0, 0.0]);
+        // The node moves down by c lambda / m, the nose up by c r lambda: the gap closes.
+        let closed = 0.01 * lambda + 0.01 * 0.5 * lambda;
+        assert!((closed - 0.1).abs() < 1e-12);
+        // A node that cannot move along its normal (u_y fixed under the axis) takes nothing.
+        let fixed = [[1.0, 0.0], [1.0, 1.0]];
+        nose().kinematic(&predicted, &fixed, 0.1, 0.5, 0.01, &mut scratch, &mut out);
+        assert_eq!(out.in_contact, 0);
+        assert_eq!(out.total, 0.0);
     }
 }

@@ -196,6 +196,8 @@ pub(crate) struct Recorder<'s> {
     row: Vec<f64>,
     in_contact: bool,
     separated_at: Option<f64>,
+    /// The force at the previous step, N (None before the first).
+    last_force: Option<f64>,
     totals: RunTotals,
 }
 
@@ -235,12 +237,18 @@ impl<'s> Recorder<'s> {
             sink,
             in_contact: false,
             separated_at: None,
+            last_force: None,
             totals,
         })
     }
 
-    /// Contact intervals: `[first t_n with F > 0, first later t_n with F = 0]`; the peak force.
+    /// Contact intervals: `[first t_n with F > 0, first later t_n with F = 0]`; the peak force;
+    /// the impulse's trapezoid `(F_{n-1} + F_n) dt / 2` (N s) from the previous step.
     pub(crate) fn contact(&mut self, t: f64, force: f64) {
+        if let Some(last) = self.last_force {
+            self.totals.impulse += 0.5 * (last + force) * self.totals.dt;
+        }
+        self.last_force = Some(force);
         if force > 0.0 {
             if !self.in_contact {
                 self.totals.contact_intervals.push([t, t]);
@@ -306,11 +314,6 @@ impl<'s> Recorder<'s> {
     /// The stable step of the plate without the contact's springs, s.
     pub(crate) fn plate_step(&mut self, dt_plate: f64) {
         self.totals.dt_plate = dt_plate;
-    }
-
-    /// Adds one step's trapezoid `(F_n + F_{n+1}) dt / 2` to the impulse, N s.
-    pub(crate) fn impulse(&mut self, force: f64, next_force: f64, dt: f64) {
-        self.totals.impulse += 0.5 * (force + next_force) * dt;
     }
 
     /// The run stopped after step `n` at `t` (`at` its last sample): closes the open contact

@@ -13,7 +13,7 @@ use crate::lanes::heap;
 use crate::lanes::simd::{dispatch, each_lane, Kernel, KernelPath, Lanes, LANES};
 use crate::mesh::PlateMesh;
 use crate::physics::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
-use crate::physics::element::{gather, lumped_masses, Formulation};
+use crate::physics::element::{gather, lumped_masses, ElementEnergy, Formulation};
 use crate::physics::impactor::RigidImpactor;
 use crate::physics::load::PrescribedLoad;
 use crate::physics::material::Elastic;
@@ -236,11 +236,13 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let mut n: u64 = 0;
     loop {
         let t = n as f64 * dt;
-        let applied = stepper.applied(t);
+        // 1: internal forces at u_n; 2: the force on the plate at t_n.
+        let element_energy = stepper.model.internal_forces(&stepper.u, &mut stepper.f_int);
+        let applied = stepper.applied(n, t);
         recorder.contact(t, applied);
         let stop = clock.stop(n, t, dt, recorder.separated_at());
-        // 1-3: internal forces, accelerations, velocities at n + 1/2; 4: energies at t_n.
-        let energies = stepper.half_step(n, applied);
+        // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
+        let energies = stepper.half_step(n, applied, element_energy);
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
         stepper.check_inversion(n, t, stop.is_some())?;
         let at = stepper.sample(t, applied, &energies, imbalance);
@@ -251,8 +253,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             return recorder.finish(n, reason, &at, stepper.initial_energy, &balance);
         }
         // u_{n+1}, then 5: the contact force at n + 1 and the impactor.
-        let next_force = stepper.advance(n, t, applied, balance_error)?;
-        recorder.impulse(applied, next_force, dt);
+        stepper.advance(n, t, applied, balance_error)?;
         n += 1;
     }
 }
@@ -470,31 +471,35 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         }
     }
 
-    /// The force on the plate at `t_n`: the contact force, or the prescribed load, N.
-    fn applied(&self, t: f64) -> f64 {
+    /// The force on the plate at `t_n`: the contact force, or the prescribed load, N (after
+    /// the internal forces at `u_n`: the surface coupling's kinematic solve reads them).
+    fn applied(&mut self, n: u64, t: f64) -> f64 {
+        if let Some(surface) = &mut self.surface {
+            let h = velocity_step(n, self.dt);
+            self.force = surface.solve(self.dt, h, &self.u, &self.v, &self.f_int);
+        }
         self.prescribed
             .as_ref()
             .map_or(self.force, |l| l.magnitude_at(t))
     }
 
-    /// Steps 1-3 (internal forces at `u_n`, accelerations, `v_{n+1/2}`); returns the energies
-    /// at `t_n` (section 7).
-    fn half_step(&mut self, n: u64, applied: f64) -> Energies {
-        let (s, dt) = (self.s, self.dt);
-        let element_energy = self.model.internal_forces(&self.u, &mut self.f_int);
+    /// Steps 2-3 (the external forces, accelerations, `v_{n+1/2}`) after step 1's internal
+    /// forces, whose element energies are `element_energy`; returns the energies at `t_n`
+    /// (section 7).
+    fn half_step(&mut self, n: u64, applied: f64, element_energy: ElementEnergy) -> Energies {
+        let s = self.s;
         self.plastic_work += s * element_energy.plastic_work;
         match (&self.prescribed, &self.surface) {
             (Some(load), _) => load.subtract_from(applied, &mut self.f_int),
             (None, Some(surface)) => surface.subtract_from(&mut self.f_int),
             (None, None) => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
         }
-        let half = if n == 0 { 0.5 } else { 1.0 };
         let update = VelocityUpdate {
             v: &mut self.v,
             f_int: &self.f_int,
             inverse_mass: &self.model.inverse_mass,
             mass: &self.model.mass,
-            h: half * dt,
+            h: velocity_step(n, self.dt),
         };
         let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
         Energies {
@@ -661,6 +666,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         };
         Ok(next_force)
     }
+}
+
+/// The velocity step of step `n`, s: `dt / 2` at the first (`v_{1/2} = dt/2 a_0`), else `dt`.
+fn velocity_step(n: u64, dt: f64) -> f64 {
+    let half = if n == 0 { 0.5 } else { 1.0 };
+    half * dt
 }
 
 /// Steps 2-3: `v += h a` with `a = -f_int / m` per dof (`h`: the velocity step, s); `run`

@@ -1,14 +1,15 @@
 //! The surface coupling in the time loop (`ALGORITHM.md` section 6, steps 2 and 5 under
-//! `contact: surface`): the penalty forces of the rigid nose on the top-surface nodes at `t_n`,
-//! the impactor moved by central differences under their sum, the stable step with the
-//! penalty springs, and what the recorder reads.
+//! `contact: surface`): the forces of the rigid nose on the top-surface nodes at `t_n`
+//! (kinematic: solved at `t_n` from the contact-free prediction; penalty: from the positions at
+//! `t_n`), the impactor moved by central differences under their sum, the stable step (with
+//! the penalty springs), the contact energy, and what the recorder reads.
 
-use crate::input::scene::SurfaceImpactor;
+use crate::input::scene::{Enforcement, SurfaceImpactor};
 use crate::mesh::PlateMesh;
 use crate::physics::element::{element_max_eigenvalue, Formulation};
 use crate::physics::impactor::CentralDifferenceImpactor;
 use crate::physics::material::ConstitutiveModel;
-use crate::physics::nose_contact::{NoseForces, NoseSurface};
+use crate::physics::nose_contact::{KinematicScratch, NoseForces, NoseSurface};
 use crate::time_loop::integrator::PlateModel;
 
 /// The nose, the impactor and the contact forces at `t_n`.
@@ -17,8 +18,22 @@ pub(crate) struct SurfaceImpact {
     pub body: CentralDifferenceImpactor,
     /// At `t_n`, for the modelled part.
     pub forces: NoseForces,
+    enforcement: Enforcement,
     /// Symmetry factor `s`.
     s: f64,
+    /// The kinematic solve's buffers: the candidates' contact-free displacements at `t_{n+1}`
+    /// (m) and inverse masses (1/kg), its scratch.
+    predicted: Vec<[f64; 2]>,
+    inverse_mass: Vec<[f64; 2]>,
+    scratch: KinematicScratch,
+    /// The work of the contact forces on the plate and the impactor up to `t_n` (trapezoidal,
+    /// whole plate), J, with the forces (modelled part, N), the candidates' displacements (m),
+    /// the impactor's force (N) and displacement (m) at the last step it was summed to.
+    work: f64,
+    last_forces: Vec<[f64; 2]>,
+    last_u: Vec<[f64; 2]>,
+    last_force: f64,
+    last_delta: f64,
 }
 
 impl SurfaceImpact {
@@ -37,15 +52,29 @@ impl SurfaceImpact {
             &model.mass,
             |e| element_max_eigenvalue(&model.formulation, elastic, density, e),
         );
-        let forces = NoseForces {
-            on_node: Vec::with_capacity(nose.nodes.len()),
-            ..NoseForces::default()
-        };
+        let k = nose.nodes.len();
+        let inverse_mass = nose
+            .nodes
+            .iter()
+            .map(|n| [model.inverse_mass[2 * n.node], model.inverse_mass[2 * n.node + 1]])
+            .collect();
         SurfaceImpact {
-            nose,
             body: CentralDifferenceImpactor::new(spec.mass, spec.velocity),
-            forces,
+            forces: NoseForces {
+                on_node: vec![[0.0; 2]; k],
+                ..NoseForces::default()
+            },
+            enforcement: spec.contact.enforcement,
             s: mesh.symmetry_factor,
+            predicted: vec![[0.0; 2]; k],
+            inverse_mass,
+            scratch: KinematicScratch::default(),
+            work: 0.0,
+            last_forces: vec![[0.0; 2]; k],
+            last_u: vec![[0.0; 2]; k],
+            last_force: 0.0,
+            last_delta: 0.0,
+            nose,
         }
     }
 
@@ -53,6 +82,9 @@ impl SurfaceImpact {
     /// max k_i / m_i)` (Weyl: a diagonal spring term raises the largest eigenvalue of
     /// `M^-1 K` by at most its largest entry).
     pub fn stable_step(&self, dt_plate: f64, mass: &[f64]) -> f64 {
+        if self.enforcement == Enforcement::Kinematic {
+            return dt_plate;
+        }
         let omega = 2.0 / dt_plate;
         2.0 / (omega * omega + self.nose.largest_spring_eigenvalue(mass)).sqrt()
     }
@@ -70,17 +102,70 @@ impl SurfaceImpact {
         self.s * self.forces.total
     }
 
-    /// Penalty energy at `t_n`, whole plate, J.
+    /// The contact energy at `t_n`, whole plate, J: the penalty's stored energy, or what the
+    /// kinematic forces took out of the plate and the impactor (minus their work).
     pub fn energy(&self) -> f64 {
-        self.s * self.forces.energy
+        match self.enforcement {
+            Enforcement::Penalty => self.s * self.forces.energy,
+            Enforcement::Kinematic => -self.work,
+        }
     }
 
-    /// Step 5: the impactor from `t_n` to `t_{n+1}` under `F_n`, then the nose's forces at
-    /// `u_{n+1}`; returns `F_{n+1}` (whole plate, N).
+    /// Step 2 at `t_n` (`h` the velocity step, s; `u`, `v`, `f_int` the plate's `u_n`,
+    /// `v_{n-1/2}` and `f_int - f_ext` without the contact): the kinematic enforcement's forces
+    /// at `t_n` from the contact-free prediction, and the work up to `t_n`. Returns `F_n`
+    /// (whole plate, N).
+    pub fn solve(&mut self, dt: f64, h: f64, u: &[f64], v: &[f64], f_int: &[f64]) -> f64 {
+        if self.enforcement == Enforcement::Kinematic {
+            for (k, n) in self.nose.nodes.iter().enumerate() {
+                for d in 0..2 {
+                    let dof = 2 * n.node + d;
+                    let v_free = v[dof] + h * (-f_int[dof] * self.inverse_mass[k][d]);
+                    self.predicted[k][d] = u[dof] + dt * v_free;
+                }
+            }
+            self.nose.kinematic(
+                &self.predicted,
+                &self.inverse_mass,
+                self.body.free_displacement(dt),
+                self.s / self.body.mass,
+                dt * h,
+                &mut self.scratch,
+                &mut self.forces,
+            );
+        }
+        self.add_work(u);
+        self.force()
+    }
+
+    /// The trapezoid of the contact forces' work from the last summed step to `t_n`.
+    fn add_work(&mut self, u: &[f64]) {
+        let mut work = 0.0;
+        for (k, n) in self.nose.nodes.iter().enumerate() {
+            let (f0, f1) = (self.last_forces[k], self.forces.on_node[k]);
+            let un = [u[2 * n.node], u[2 * n.node + 1]];
+            for d in 0..2 {
+                work += 0.5 * (f0[d] + f1[d]) * (un[d] - self.last_u[k][d]);
+            }
+            self.last_u[k] = un;
+        }
+        self.last_forces.copy_from_slice(&self.forces.on_node);
+        let force = self.force();
+        let delta = self.body.displacement;
+        // The impactor is pushed up (against delta, positive down).
+        self.work += self.s * work - 0.5 * (self.last_force + force) * (delta - self.last_delta);
+        (self.last_force, self.last_delta) = (force, delta);
+    }
+
+    /// Step 5: the impactor from `t_n` to `t_{n+1}` under `F_n`; under the penalty, the nose's
+    /// forces at `u_{n+1}`. Returns the force known at `t_{n+1}` (whole plate, N; the
+    /// kinematic enforcement's is found at the next step 2).
     pub fn advance(&mut self, dt: f64, u: &[f64]) -> f64 {
         self.body.advance(dt, self.force());
-        self.nose
-            .evaluate(u, self.body.displacement, &mut self.forces);
+        if self.enforcement == Enforcement::Penalty {
+            self.nose
+                .evaluate(u, self.body.displacement, &mut self.forces);
+        }
         self.force()
     }
 
@@ -91,8 +176,9 @@ impl SurfaceImpact {
         [d + top_uy, d, self.body.velocity(dt, self.force())]
     }
 
-    /// Contact half-width (m, current positions, from the axis) and nodes in contact (whole
-    /// plate: the half model's nodes off the axis counted twice) at `t_n`.
+    /// Contact half-width (m, from the axis; current positions, or the predicted ones the
+    /// kinematic forces hold on the nose) and nodes in contact (whole plate: the half model's
+    /// nodes off the axis counted twice) at `t_n`.
     pub fn patch(&self) -> [f64; 2] {
         let on_axis = self
             .nose
