@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import copy
 import json
+import os
 import subprocess
 import sys
 import time
@@ -29,7 +30,7 @@ from indep_fe.scene import with_dotted  # noqa: E402
 from helpers import BASE as TEST_SCENE, PLASTIC  # noqa: E402
 from indep_fe.compare import column_diffs, interval_steps, read_history, read_summary, summary_diffs  # noqa: E402
 
-RUST = ROOT / "target" / "release" / "impact"
+RUST = Path(os.environ.get("IMPACT_BIN", ROOT / "target" / "release" / "impact"))
 PY = [str(ROOT / ".venv" / "bin" / "python"), "-m", "indep_fe", "simulate"]
 
 # The Python tests' small scene (scripts/tests/helpers.py: the README's example plate and
@@ -39,13 +40,25 @@ TABLE = {"yield_stress": 250.0e6, "hardening": {"table": [[0.0, 250.0e6], [0.002
                                                           [0.05, 320.0e6]]}}
 LAWS = {"paper1m": {"paper": {"length_unit": 1.0}}, "papermm": {"paper": {"length_unit": 1.0e-3}},
         "johnson": {"johnson": {"datum_depth": 0.010}}}
-KEY_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps", "mid_uy_m",
+KEY_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps",
+               "contact_half_width_m", "nodes_in_contact", "mid_uy_m",
                "top_uy_m", "A_von_mises_Pa", "plate_kinetic_J", "strain_energy_J",
                "plastic_work_J", "external_work_J"]
 
 
 def with_overrides(**over) -> dict:
     return with_dotted(BASE, over)
+
+
+def surface(contact="surface", radius=0.5, **over) -> dict:
+    """BASE with the surface coupling (ALGORITHM.md 5b): the nodal keys removed, a 0.5 m nose
+    (5 to 7 nodes in contact on the 20 x 4 mesh)."""
+    return with_overrides(**{"load.impactor.youngs_modulus": None,
+                             "load.impactor.poisson_ratio": None,
+                             "load.impactor.contact_law": None,
+                             "load.impactor.indentation_datum": None,
+                             "load.impactor.contact": contact,
+                             "load.impactor.nose_radius": radius, **over})
 
 
 def cases(big: bool) -> dict[str, dict]:
@@ -81,6 +94,27 @@ def cases(big: bool) -> dict[str, dict]:
     out["s20x4-q4-sri-m10v15-half-pl"] = with_overrides(**{
         "load.impactor.mass": 10.0, "load.impactor.velocity": 15.0,
         "time.end": {"after_contact": 2.0e-4}, "material.plasticity": PLASTIC})
+    # surface coupling (section 5b): element x model x material, then variants
+    for el in ["q4-full", "q4-sri", "q4-1pt"]:
+        for model in ["half", "full"]:
+            for mat in ["el", "pl"]:
+                out[f"s20x4-{el}-surface-{model}-{mat}"] = surface(**{
+                    "mesh.element": el, "mesh.model": model,
+                    "mesh.nx": 20 if model == "half" else 40,
+                    "material.plasticity": PLASTIC if mat == "pl" else None})
+    # (s_p = 1 shortens the stable step to 4.96e-7 s: dt 4e-7; its contact chatters, see README)
+    for sp in [0.5, 1.0]:
+        for mat in ["el", "pl"]:
+            out[f"s20x4-q4-sri-surface-sp{sp}-half-{mat}"] = surface(
+                {"surface": {"penalty_scale": sp}},
+                **{"material.plasticity": PLASTIC if mat == "pl" else None,
+                   "time.dt.fixed": 5.0e-7 if sp < 1 else 4.0e-7})
+    out["s20x4-q4-sri-surface-R0.05-half-pl"] = surface(radius=0.05, **{"material.plasticity": PLASTIC})
+    out["s20x8-q4-sri-surface-graded3-half-pl"] = surface(**{
+        "mesh.ny": 8, "mesh.grading": 3.0, "time.dt.fixed": 1.0e-7, "material.plasticity": PLASTIC})
+    out["s20x4-q4-sri-surface-aftercontact-m10v15-half-pl"] = surface(**{
+        "load.impactor.mass": 10.0, "load.impactor.velocity": 15.0,
+        "time.end": {"after_contact": 2.0e-4}, "material.plasticity": PLASTIC})
     # pulse (86.5 kN, 1 ms), small
     for mat in ["el", "pl"]:
         out[f"s20x4-pulse-q4-sri-half-{mat}"] = with_overrides(**{
@@ -112,7 +146,8 @@ def run_case(name: str, scene: dict, out: Path) -> dict:
     sp = d / "scene.yaml"
     sp.write_text(yaml.safe_dump(scene, sort_keys=False))
     t0 = time.perf_counter()
-    subprocess.run([str(RUST), "simulate", str(sp), "--out", str(d / "rust"), "--quiet"], check=True)
+    subprocess.run([str(RUST), "simulate", str(sp), "--out", str(d / "rust"), "--quiet", "--force",
+                    "--threads", "1"], check=True)
     t1 = time.perf_counter()
     subprocess.run(PY + [str(sp), "--out", str(d / "python")], check=True, cwd=HERE,
                    stdout=subprocess.DEVNULL)

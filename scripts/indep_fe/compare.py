@@ -31,11 +31,14 @@ from pathlib import Path
 import numpy as np
 
 # scalar summary metrics compared relatively, and those compared exactly
+# (the last three: surface-coupling scenes only, compared when either run has them)
 SUMMARY_METRICS = ["impulse_Ns", "peak_contact_force_N", "max_plate_displacement_m",
-                   "final_impactor_velocity_mps", "contact_duration_s"]
+                   "final_impactor_velocity_mps", "contact_duration_s", "contact_step_factor",
+                   "max_contact_half_width_m", "max_nodes_in_contact"]
 SUMMARY_EXACT = ["dt_s", "n_steps", "n_elements"]
 # columns drawn by --plots (those present), each in its own panel with the difference below
-PLOT_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps", "mid_uy_m",
+PLOT_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps",
+                "contact_half_width_m", "nodes_in_contact", "mid_uy_m",
                 "top_uy_m", "bottom_uy_m", "plate_kinetic_J", "impactor_kinetic_J",
                 "strain_energy_J", "plastic_work_J", "contact_energy_J", "external_work_J",
                 "energy_balance_error"]

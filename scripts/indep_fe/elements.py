@@ -143,12 +143,17 @@ def lumped_mass(pm: PlateMesh, kin: Kinematics, density: float, width: float) ->
     return m
 
 
+def element_eigenvalues(form: Formulation, D: np.ndarray, kin: Kinematics, density: float,
+                        width: float) -> np.ndarray:
+    """(nel,) lambda_e = lambda_max(M_e^-1/2 K_e M_e^-1/2), M_e = rho A W / 4 I (section 4)."""
+    K = element_stiffness(form, D)
+    return np.linalg.eigvalsh(K)[:, -1] / (density * kin.area * width / 4.0)
+
+
 def critical_dt(form: Formulation, D: np.ndarray, kin: Kinematics, density: float,
                 width: float) -> float:
-    """dt_crit = 2 / sqrt(max_e lambda_max(M_e^-1/2 K_e M_e^-1/2)), M_e = rho A W / 4 I."""
-    K = element_stiffness(form, D)
-    lam_max = np.linalg.eigvalsh(K)[:, -1] / (density * kin.area * width / 4.0)
-    return 2.0 / np.sqrt(lam_max.max())
+    """dt_crit = 2 / sqrt(max_e lambda_e)."""
+    return 2.0 / np.sqrt(element_eigenvalues(form, D, kin, density, width).max())
 
 
 def global_operators(form: Formulation, pm: PlateMesh):

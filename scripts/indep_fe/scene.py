@@ -61,11 +61,15 @@ class Impactor:
     mass: float
     velocity: float
     nose_radius: float
-    youngs_modulus: float
-    poisson_ratio: float
-    contact_law: ContactLaw
-    indentation_datum: str = "mid-plane"
+    # nodal coupling (ALGORITHM.md sections 5, 6 step 5): None under the surface coupling
+    youngs_modulus: float | None
+    poisson_ratio: float | None
+    contact_law: ContactLaw | None
+    indentation_datum: str | None = "mid-plane"
     force_node: str | None = None     # defaults to the datum
+    # load.impactor.contact: nodal (default) | surface | {surface: {penalty_scale: s_p}}
+    coupling: str = "nodal"
+    penalty_scale: float | None = None   # s_p of the surface coupling (section 5b)
 
 
 @dataclass
@@ -227,6 +231,66 @@ def _parse_mesh(data: dict) -> MeshSpec:
     return mesh
 
 
+NODAL_KEYS = ("youngs_modulus", "poisson_ratio", "contact_law", "indentation_datum", "force_node")
+PENALTY_SCALE_DEFAULT = 0.1
+
+
+def _parse_coupling(c) -> tuple[str, float | None]:
+    """load.impactor.contact: nodal (default) | surface | {surface: {penalty_scale: s_p}},
+    s_p in (0, 1], default 0.1 (ALGORITHM.md section 5b)."""
+    if c is None or c == "nodal":
+        return "nodal", None
+    if c == "surface":
+        return "surface", PENALTY_SCALE_DEFAULT
+    if isinstance(c, dict) and len(c) == 1 and "surface" in c:
+        opts = c["surface"] or {}
+        if not isinstance(opts, dict):
+            raise SceneError(f"load.impactor.contact.surface must be a mapping, got {opts!r}")
+        _refuse_unknown(opts, {"penalty_scale"}, "load.impactor.contact.surface")
+        sp = float(opts.get("penalty_scale", PENALTY_SCALE_DEFAULT))
+        if not (0.0 < sp <= 1.0):
+            raise SceneError(f"load.impactor.contact.surface.penalty_scale must be in (0, 1], "
+                             f"got {sp}")
+        return "surface", sp
+    raise SceneError(f"load.impactor.contact must be nodal | surface | "
+                     f"{{surface: {{penalty_scale: s}}}}, got {c!r}")
+
+
+def _parse_impactor(im: dict) -> Impactor:
+    """load.impactor: mass, velocity, nose radius and the coupling: the nodal one (contact law,
+    datum and force node) or the surface one (section 5b: rigid nose, no law)."""
+    _refuse_unknown(im, {"mass", "velocity", "nose_radius", "contact", *NODAL_KEYS}, "load.impactor")
+    coupling, sp = _parse_coupling(im.get("contact"))
+    mass = _pos(_req(im, "mass", "load.impactor"), "load.impactor.mass")
+    velocity = float(_req(im, "velocity", "load.impactor"))
+    radius = _pos(_req(im, "nose_radius", "load.impactor"), "load.impactor.nose_radius")
+    if coupling == "surface":
+        for key in NODAL_KEYS:
+            if key in im:
+                raise SceneError(f"load.impactor.{key} belongs to the nodal coupling; "
+                                 f"with contact: surface the nose is rigid: remove it")
+        return Impactor(mass, velocity, radius, None, None, None, None, None,
+                        coupling="surface", penalty_scale=sp)
+    kind, val = _one_of(_req(im, "contact_law", "load.impactor"), "load.impactor.contact_law")
+    if kind == "paper":
+        law = ContactLaw("paper", length_unit=_pos(_req(val, "length_unit", "contact_law.paper"),
+                                                   "contact_law.paper.length_unit"))
+    elif kind == "johnson":
+        law = ContactLaw("johnson", datum_depth=_pos(_req(val, "datum_depth", "contact_law.johnson"),
+                                                     "contact_law.johnson.datum_depth"))
+    else:
+        raise SceneError(f"unknown contact_law '{kind}' (paper | johnson)")
+    datum = str(im.get("indentation_datum", "mid-plane"))
+    fnode = im.get("force_node")
+    for name, v in (("indentation_datum", datum), ("force_node", fnode)):
+        if v is not None and v not in ("mid-plane", "top-surface"):
+            raise SceneError(f"load.impactor.{name} must be mid-plane | top-surface, got {v}")
+    isnu = float(_req(im, "poisson_ratio", "load.impactor"))
+    return Impactor(mass, velocity, radius,
+                    _pos(_req(im, "youngs_modulus", "load.impactor"), "load.impactor.youngs_modulus"),
+                    isnu, law, datum, fnode if fnode is not None else datum)
+
+
 def _parse_load(data: dict) -> tuple[Impactor | None, Pulse | None]:
     """load: exactly one of an impactor or a pulse."""
     load = _req(data, "load", "scene")
@@ -236,29 +300,7 @@ def _parse_load(data: dict) -> tuple[Impactor | None, Pulse | None]:
     if ("impactor" in load) == ("pulse" in load):
         raise SceneError("load must have exactly one of 'impactor' or 'pulse'")
     if "impactor" in load:
-        im = load["impactor"]
-        _refuse_unknown(im, {"mass", "velocity", "nose_radius", "youngs_modulus", "poisson_ratio",
-                           "contact_law", "indentation_datum", "force_node"}, "load.impactor")
-        kind, val = _one_of(_req(im, "contact_law", "load.impactor"), "load.impactor.contact_law")
-        if kind == "paper":
-            law = ContactLaw("paper", length_unit=_pos(_req(val, "length_unit", "contact_law.paper"),
-                                                       "contact_law.paper.length_unit"))
-        elif kind == "johnson":
-            law = ContactLaw("johnson", datum_depth=_pos(_req(val, "datum_depth", "contact_law.johnson"),
-                                                         "contact_law.johnson.datum_depth"))
-        else:
-            raise SceneError(f"unknown contact_law '{kind}' (paper | johnson)")
-        datum = str(im.get("indentation_datum", "mid-plane"))
-        fnode = im.get("force_node")
-        for name, v in (("indentation_datum", datum), ("force_node", fnode)):
-            if v is not None and v not in ("mid-plane", "top-surface"):
-                raise SceneError(f"load.impactor.{name} must be mid-plane | top-surface, got {v}")
-        isnu = float(_req(im, "poisson_ratio", "load.impactor"))
-        impactor = Impactor(_pos(_req(im, "mass", "load.impactor"), "load.impactor.mass"),
-                            float(_req(im, "velocity", "load.impactor")),
-                            _pos(_req(im, "nose_radius", "load.impactor"), "load.impactor.nose_radius"),
-                            _pos(_req(im, "youngs_modulus", "load.impactor"), "load.impactor.youngs_modulus"),
-                            isnu, law, datum, fnode if fnode is not None else datum)
+        impactor = _parse_impactor(load["impactor"])
     else:
         pu = load["pulse"]
         _refuse_unknown(pu, {"force", "duration"}, "load.pulse")

@@ -12,11 +12,12 @@ from pathlib import Path
 import numpy as np
 
 from .contact import make_law
-from .elements import (critical_dt, elastic_matrix, formulation, global_operators, kinematics,
-                       lumped_mass)
+from .elements import (elastic_matrix, element_eigenvalues, formulation, global_operators,
+                       kinematics, lumped_mass)
 from .material import MaterialModel, lame, von_mises
 from .mesh import build_mesh, find_element
 from .scene import Scene
+from .surface import SurfaceNose
 
 ENERGY_COLUMNS = ["plate_kinetic_J", "impactor_kinetic_J", "strain_energy_J", "plastic_work_J",
                   "hourglass_energy_J", "contact_energy_J", "external_work_J",
@@ -25,6 +26,7 @@ PROBE_SUFFIXES = ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"]
 
 
 IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
+SURFACE_COLUMNS = ["contact_half_width_m", "nodes_in_contact"]
 # Blow-up guard (ALGORITHM.md section 7): imbalance above this multiple of the largest energy
 # scale reached so far stops the run as unstable.
 BLOW_UP_RATIO = 10.0
@@ -34,9 +36,11 @@ class UnstableRun(RuntimeError):
     pass
 
 
-def history_columns(probe_names: list[str], impact: bool = True) -> list[str]:
-    """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns."""
+def history_columns(probe_names: list[str], impact: bool = True, surface: bool = False) -> list[str]:
+    """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns; the surface
+    coupling adds its two after them."""
     cols = ["time_s", "contact_force_N"] + (IMPACT_COLUMNS if impact else [])
+    cols += SURFACE_COLUMNS if surface else []
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
     for p in probe_names:
         cols += [f"{p}_{s}" for s in PROBE_SUFFIXES]
@@ -84,6 +88,8 @@ class _Plate:
     s: float
     w_flat: np.ndarray
     ngp: int
+    dt_plate: float                       # the plate's critical step (section 4)
+    nose: SurfaceNose | None = None       # the surface coupling (section 5b)
 
 
 def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
@@ -95,19 +101,29 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
     lam, mu = lame(mat.youngs_modulus, mat.poisson_ratio)
     form = formulation(ms.element, pm, kin, W, lam, mu, ms.hourglass)
     D = elastic_matrix(lam, mu)
-    dt_crit = critical_dt(form, D, kin, mat.density, W)
+    lam_e = element_eigenvalues(form, D, kin, mat.density, W)
+    dt_plate = 2.0 / np.sqrt(lam_e.max())
+    m_node = lumped_mass(pm, kin, mat.density, W)
+    nose = None
+    dt_crit = dt_plate
+    imp = scene.impactor
+    if imp is not None and imp.coupling == "surface":
+        # section 5b: the penalty springs shorten the stable step
+        nose = SurfaceNose.build(pm, plate.length, plate.thickness, imp.nose_radius,
+                                 imp.penalty_scale, imp.mass, imp.velocity, m_node, lam_e)
+        dt_crit = nose.stable_step(dt_plate)
     dt = _plan_dt(scene, dt_crit)
 
     Bg, G = global_operators(form, pm)
     ndof = 2 * pm.n_nodes
-    m_dof = np.repeat(lumped_mass(pm, kin, mat.density, W), 2)
+    m_dof = np.repeat(m_node, 2)
     free = np.ones(ndof, bool)
     free[pm.fixed_dofs] = False
     nel, ngp = form.B.shape[:2]
     pl = _Plate(pm=pm, form=form, Bg=Bg, BgT=Bg.T.tocsr(), G=G,
                 GT=G.T.tocsr() if G is not None else None, m_dof=m_dof,
                 inv_m=np.where(free, 1.0 / m_dof, 0.0), s=pm.symmetry, w_flat=form.w.ravel(),
-                ngp=ngp)
+                ngp=ngp, dt_plate=dt_plate, nose=nose)
     return pl, MaterialModel(mat, nel * ngp), dt, dt_crit
 
 
@@ -153,12 +169,15 @@ class _Impactor:
         return di
 
 
-def _impactor(scene: Scene, pl: _Plate) -> tuple[_Impactor | None, int]:
-    """The impactor (None for a pulse) and the node whose u_y the force acts on."""
+def _impactor(scene: Scene, pl: _Plate) -> tuple[_Impactor | SurfaceNose | None, int]:
+    """The impactor (None for a pulse; the SurfaceNose under the surface coupling) and the node
+    whose u_y the force acts on (nodal coupling, pulse)."""
     imp = scene.impactor
     node_of = {"mid-plane": pl.pm.mid, "top-surface": pl.pm.top}
     if imp is None:
         return None, pl.pm.top
+    if imp.coupling == "surface":
+        return pl.nose, pl.pm.top
     body = _Impactor(law=make_law(imp, scene.material, scene.plate.width),
                      datum=node_of[imp.indentation_datum], m_s=imp.mass, v0=imp.velocity,
                      vS=imp.velocity)
@@ -237,23 +256,25 @@ def _internal_forces(pl: _Plate, material: MaterialModel, u: np.ndarray):
     return stress, strain_energy, dwork, f_int, hg_energy
 
 
-def _summary(scene: Scene, pl: _Plate, body: _Impactor | None, contact: _Contact,
-             balance: _Balance, totals: dict, n: int, dt: float, dt_crit: float,
-             stop_reason: str) -> dict:
+def _summary(scene: Scene, pl: _Plate, body: _Impactor | SurfaceNose | None,
+             contact: _Contact, balance: _Balance, totals: dict, n: int, dt: float,
+             dt_crit: float, stop_reason: str) -> dict:
     """summary.json (section 8)."""
     intervals = contact.intervals
     impulse = totals["impulse"]
-    law = body.law if body is not None else None
-    return {
+    surface = isinstance(body, SurfaceNose)
+    law = body if surface else (body.law if body is not None else None)
+    v_final = (body.velocity(dt) if surface else body.vS) if body is not None else None
+    out = {
         "solver": "indep_fe (Python reference, scripts/indep_fe)",
         "impulse_Ns": impulse,
         "peak_contact_force_N": totals["peak_F"],
         "max_plate_displacement_m": totals["max_down"],
         "contact_intervals_s": intervals,
         "contact_duration_s": intervals[-1][1] if intervals else 0.0,
-        "final_impactor_velocity_mps": body.vS if body is not None else None,
-        "impactor_momentum_change_Ns": body.m_s * (body.v0 - body.vS) if body is not None else None,
-        "impulse_momentum_error": (abs(impulse - body.m_s * (body.v0 - body.vS)) / (body.m_s * body.v0)
+        "final_impactor_velocity_mps": v_final,
+        "impactor_momentum_change_Ns": body.m_s * (body.v0 - v_final) if body is not None else None,
+        "impulse_momentum_error": (abs(impulse - body.m_s * (body.v0 - v_final)) / (body.m_s * body.v0)
                                    if body is not None else None),
         "max_von_mises_Pa": totals["max_vm"],
         "max_energy_balance_error": balance.ratio(balance.max_imbalance),
@@ -272,6 +293,11 @@ def _summary(scene: Scene, pl: _Plate, body: _Impactor | None, contact: _Contact
         "final_plastic_work_J": pl.s * totals["plastic_work"],
         "wall_time_s": time.perf_counter() - totals["wall0"],
     }
+    if surface:
+        out["contact_step_factor"] = dt_crit / pl.dt_plate
+        out["max_contact_half_width_m"] = totals["max_half_width"]
+        out["max_nodes_in_contact"] = totals["max_nodes"]
+    return out
 
 
 def simulate(scene: Scene, progress: bool = False) -> Result:
@@ -287,13 +313,15 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
                        n_limit=steps_for(ts.limit, dt), after=ts.after_contact)
     balance = _Balance()
     every = scene.output.every      # None: a row every step
-    columns = history_columns(probe_names, impact=body is not None)
+    surface = isinstance(body, SurfaceNose)
+    columns = history_columns(probe_names, impact=body is not None, surface=surface)
     rows: list[list] = []
     s, ndof, pm = pl.s, 2 * pl.pm.n_nodes, pl.pm
     u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2}
     W_ext = 0.0
     totals = {"impulse": 0.0, "peak_F": 0.0, "max_down": 0.0, "plastic_work": 0.0,
-              "max_vm": {p: 0.0 for p in probe_names}, "wall0": wall0}
+              "max_vm": {p: 0.0 for p in probe_names}, "wall0": wall0,
+              "max_half_width": 0.0, "max_nodes": 0.0}
     k_row = 1
     next_row = steps_for(k_row * every, dt) if every is not None else 1
     top_uy, mid_uy, bot_uy = 2 * pm.top + 1, 2 * pm.mid + 1, 2 * pm.bottom + 1
@@ -310,7 +338,10 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         totals["plastic_work"] += dwork
         plastic_work = totals["plastic_work"]
         f_ext = np.zeros(ndof)
-        f_ext[fy] = -load / s
+        if surface:
+            body.apply(f_ext)           # the nose's f_i at t_n (section 5b)
+        else:
+            f_ext[fy] = -load / s
         a = (f_ext - f_int) * pl.inv_m
         v_new = v_half + dt * a if n > 0 else 0.5 * dt * a
         u_new = u + dt * v_new
@@ -318,8 +349,15 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         # 4. energies at t_n
         v_n = 0.5 * (v_half + v_new) if n > 0 else np.zeros(ndof)
         e_kin = s * 0.5 * float(np.dot(pl.m_dof, v_n * v_n))
-        e_imp = 0.5 * body.m_s * body.vS * body.vS if body is not None else 0.0
-        e_con = body.law.energy(body.F) if body is not None else 0.0
+        if surface:
+            v_S = body.velocity(dt)
+            e_imp = 0.5 * body.m_s * v_S * v_S
+            e_con = body.energy
+            totals["max_half_width"] = max(totals["max_half_width"], body.half_width)
+            totals["max_nodes"] = max(totals["max_nodes"], body.n_contact)
+        else:
+            e_imp = 0.5 * body.m_s * body.vS * body.vS if body is not None else 0.0
+            e_con = body.law.energy(body.F) if body is not None else 0.0
         total = e_kin + e_imp + s * strain_energy + s * plastic_work + s * hg_energy + e_con
         imbalance = balance.record(n, t, total, W_ext, dt, dt_crit)
 
@@ -331,7 +369,9 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
 
         if n == 0 or n >= next_row or last:
             row = [t, load]
-            if body is not None:
+            if surface:
+                row += [body.dS + u[top_uy], body.dS, v_S, body.half_width, body.n_contact]
+            elif body is not None:
                 d_c = -u[2 * body.datum + 1]
                 row += [body.dS - d_c, body.dS, body.vS]
             row += [u[top_uy], u[mid_uy], u[bot_uy]]
@@ -354,7 +394,7 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         if pulse is not None:
             W_ext += 0.5 * (F_pulse(t) + F_pulse((n + 1) * dt)) * (-u_new[top_uy] + u[top_uy])
             totals["impulse"] += 0.5 * (F_pulse(t) + F_pulse((n + 1) * dt)) * dt
-        # 5. contact (eq. 21, then eqs. 19-20)
+        # 5. contact (surface: section 5b; nodal: eq. 21, then eqs. 19-20)
         if body is not None:
             totals["impulse"] += body.step(u_new, dt)
         u, v_half = u_new, v_new
