@@ -504,6 +504,12 @@ pub struct PlotSpec {
     /// not in ms.
     #[serde(default)]
     pub x_label: Option<String>,
+    /// Or a summary `metric` of several mesh `series` against the element size, side by side
+    /// (e.g. two couplings' peak forces under refinement); `scenes` is then empty.
+    #[serde(default)]
+    pub series: Vec<String>,
+    #[serde(default)]
+    pub metric: Option<String>,
 }
 
 /// A case's `report:` block: the report-wide parts it feeds (rendered by

@@ -20,7 +20,11 @@ pub fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(Strin
     let dir = runs.join(suite).join(case);
     let mut out = Vec::new();
     for p in c["plots"].as_array().into_iter().flatten() {
-        out.extend(history_plots(p, &dir, root));
+        if p["series"].as_array().is_some_and(|s| !s.is_empty()) {
+            out.extend(series_values_plot(p, &c["series"]));
+        } else {
+            out.extend(history_plots(p, &dir, root));
+        }
     }
     for (name, sd) in c["series"].as_object().into_iter().flatten() {
         out.extend(convergence_plots(name, sd));
@@ -108,6 +112,30 @@ fn history_plots(p: &serde_json::Value, dir: &Path, root: &Path) -> Vec<(String,
         }
     }
     out
+}
+
+/// A `plots:` entry with `series` and `metric`: that metric of each mesh series against
+/// log10 of the element size over the coarsest one (0 at the coarsest level, negative finer),
+/// the series side by side.
+fn series_values_plot(p: &serde_json::Value, all: &serde_json::Value) -> Option<(String, String)> {
+    let title = p["title"].as_str().unwrap_or("");
+    let metric = p["metric"].as_str()?;
+    let (label, unit) = column_axis(metric);
+    let mut series: Vec<Series> = Vec::new();
+    for name in strings(&p["series"]) {
+        let sd = &all[name];
+        let levels: Vec<f64> = sd["levels"].as_array()?.iter().filter_map(|x| x.as_f64()).collect();
+        let values = sd["metrics"][metric].as_array()?;
+        let coarsest = levels.iter().copied().fold(f64::INFINITY, f64::min);
+        let pts = levels
+            .iter()
+            .zip(values)
+            .filter_map(|(l, v)| Some(((coarsest / l).log10(), v.as_f64()?)))
+            .collect();
+        series.push((name.to_string(), pts, false));
+    }
+    let x = Axis::new("log10 (element size / coarsest element size)", "");
+    Some((title.to_string(), svg_plot(title, x, Axis::new(&label, unit), &series)))
 }
 
 /// The x axis of a convergence plot: log10 of the refined size over the coarsest one.

@@ -6,6 +6,7 @@
 pub mod bar_wave;
 pub mod bending_period;
 pub mod collapse;
+pub mod column_impact;
 pub mod driver;
 pub mod element_eigen;
 pub mod macneal_harder;
@@ -25,7 +26,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 12] = [
+pub const NAMES: [&str; 13] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -38,6 +39,7 @@ pub const NAMES: [&str; 12] = [
     "bending-period",
     "static-pulse",
     "thick-cylinder",
+    "column-impact",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -55,6 +57,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "bending-period" => bending_period::bending_period(p),
         "static-pulse" => static_pulse::static_pulse(p),
         "thick-cylinder" => thick_cylinder::thick_cylinder(p),
+        "column-impact" => column_impact::column_impact(p),
         _ => return None,
     })
 }
