@@ -104,25 +104,27 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
     lam_e = element_eigenvalues(form, D, kin, mat.density, W)
     dt_plate = 2.0 / np.sqrt(lam_e.max())
     m_node = lumped_mass(pm, kin, mat.density, W)
-    nose = None
-    dt_crit = dt_plate
-    imp = scene.impactor
-    if imp is not None and imp.coupling == "surface":
-        # section 5b: the penalty springs shorten the stable step
-        nose = SurfaceNose.build(pm, plate.length, plate.thickness, imp.nose_radius,
-                                 imp.penalty_scale, imp.mass, imp.velocity, m_node, lam_e)
-        dt_crit = nose.stable_step(dt_plate)
-    dt = _plan_dt(scene, dt_crit)
-
-    Bg, G = global_operators(form, pm)
     ndof = 2 * pm.n_nodes
     m_dof = np.repeat(m_node, 2)
     free = np.ones(ndof, bool)
     free[pm.fixed_dofs] = False
+    inv_m = np.where(free, 1.0 / m_dof, 0.0)
+    nose = None
+    dt_crit = dt_plate
+    imp = scene.impactor
+    if imp is not None and imp.coupling == "surface":
+        # section 5b: the penalty springs shorten the stable step (kinematic: the plate's)
+        nose = SurfaceNose.build(pm, plate.length, plate.thickness, imp.nose_radius,
+                                 imp.enforcement, imp.penalty_scale, imp.mass, imp.velocity,
+                                 m_node, inv_m, lam_e)
+        dt_crit = nose.stable_step(dt_plate)
+    dt = _plan_dt(scene, dt_crit)
+
+    Bg, G = global_operators(form, pm)
     nel, ngp = form.B.shape[:2]
     pl = _Plate(pm=pm, form=form, Bg=Bg, BgT=Bg.T.tocsr(), G=G,
                 GT=G.T.tocsr() if G is not None else None, m_dof=m_dof,
-                inv_m=np.where(free, 1.0 / m_dof, 0.0), s=pm.symmetry, w_flat=form.w.ravel(),
+                inv_m=inv_m, s=pm.symmetry, w_flat=form.w.ravel(),
                 ngp=ngp, dt_plate=dt_plate, nose=nose)
     return pl, MaterialModel(mat, nel * ngp), dt, dt_crit
 
@@ -327,16 +329,22 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     top_uy, mid_uy, bot_uy = 2 * pm.top + 1, 2 * pm.mid + 1, 2 * pm.bottom + 1
     fy = 2 * force_node + 1
 
+    kinematic = surface and body.kinematic
     n = 0
     while True:
         t = n * dt
-        load = body.F if body is not None else F_pulse(t)
-        last, stop_reason = contact.step(n, t, dt, load)
-
-        # 1. internal forces at u_n; 2. external force; 3. central difference
+        # 1. internal forces at u_n
         stress, strain_energy, dwork, f_int, hg_energy = _internal_forces(pl, material, u)
         totals["plastic_work"] += dwork
         plastic_work = totals["plastic_work"]
+        if kinematic:
+            # section 5b: the kinematic enforcement solves f_n, F_n here, from f_int(u_n); the
+            # impulse's trapezoid (F_n-1 + F_n) dt / 2 is counted once F_n is known
+            totals["impulse"] += body.solve(u, v_half, f_int, dt, first=n == 0)
+        load = body.F if body is not None else F_pulse(t)
+        last, stop_reason = contact.step(n, t, dt, load)
+
+        # 2. external force; 3. central difference
         f_ext = np.zeros(ndof)
         if surface:
             body.apply(f_ext)           # the nose's f_i at t_n (section 5b)
