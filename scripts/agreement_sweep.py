@@ -94,27 +94,32 @@ def cases(big: bool) -> dict[str, dict]:
     out["s20x4-q4-sri-m10v15-half-pl"] = with_overrides(**{
         "load.impactor.mass": 10.0, "load.impactor.velocity": 15.0,
         "time.end": {"after_contact": 2.0e-4}, "material.plasticity": PLASTIC})
-    # surface coupling (section 5b): element x model x material, then variants
-    for el in ["q4-full", "q4-sri", "q4-1pt"]:
-        for model in ["half", "full"]:
-            for mat in ["el", "pl"]:
-                out[f"s20x4-{el}-surface-{model}-{mat}"] = surface(**{
-                    "mesh.element": el, "mesh.model": model,
-                    "mesh.nx": 20 if model == "half" else 40,
-                    "material.plasticity": PLASTIC if mat == "pl" else None})
+    # surface coupling (section 5b): enforcement x element x model x material, then variants
+    enforcements = {"kin": "surface", "pen": {"surface": {"enforcement": "penalty"}}}
+    for enf, contact in enforcements.items():
+        for el in ["q4-full", "q4-sri", "q4-1pt"]:
+            for model in ["half", "full"]:
+                for mat in ["el", "pl"]:
+                    out[f"s20x4-{el}-surface-{enf}-{model}-{mat}"] = surface(contact, **{
+                        "mesh.element": el, "mesh.model": model,
+                        "mesh.nx": 20 if model == "half" else 40,
+                        "material.plasticity": PLASTIC if mat == "pl" else None})
     # (s_p = 1 shortens the stable step to 4.96e-7 s: dt 4e-7; its contact chatters, see README)
     for sp in [0.5, 1.0]:
         for mat in ["el", "pl"]:
-            out[f"s20x4-q4-sri-surface-sp{sp}-half-{mat}"] = surface(
-                {"surface": {"penalty_scale": sp}},
+            out[f"s20x4-q4-sri-surface-pen-sp{sp}-half-{mat}"] = surface(
+                {"surface": {"enforcement": "penalty", "penalty_scale": sp}},
                 **{"material.plasticity": PLASTIC if mat == "pl" else None,
                    "time.dt.fixed": 5.0e-7 if sp < 1 else 4.0e-7})
-    out["s20x4-q4-sri-surface-R0.05-half-pl"] = surface(radius=0.05, **{"material.plasticity": PLASTIC})
-    out["s20x8-q4-sri-surface-graded3-half-pl"] = surface(**{
-        "mesh.ny": 8, "mesh.grading": 3.0, "time.dt.fixed": 1.0e-7, "material.plasticity": PLASTIC})
-    out["s20x4-q4-sri-surface-aftercontact-m10v15-half-pl"] = surface(**{
-        "load.impactor.mass": 10.0, "load.impactor.velocity": 15.0,
-        "time.end": {"after_contact": 2.0e-4}, "material.plasticity": PLASTIC})
+    for enf, contact in enforcements.items():
+        out[f"s20x4-q4-sri-surface-{enf}-R0.05-half-pl"] = surface(
+            contact, radius=0.05, **{"material.plasticity": PLASTIC})
+        out[f"s20x8-q4-sri-surface-{enf}-graded3-half-pl"] = surface(contact, **{
+            "mesh.ny": 8, "mesh.grading": 3.0, "time.dt.fixed": 1.0e-7,
+            "material.plasticity": PLASTIC})
+        out[f"s20x4-q4-sri-surface-{enf}-aftercontact-m10v15-half-pl"] = surface(contact, **{
+            "load.impactor.mass": 10.0, "load.impactor.velocity": 15.0,
+            "time.end": {"after_contact": 2.0e-4}, "material.plasticity": PLASTIC})
     # pulse (86.5 kN, 1 ms), small
     for mat in ["el", "pl"]:
         out[f"s20x4-pulse-q4-sri-half-{mat}"] = with_overrides(**{

@@ -67,9 +67,11 @@ class Impactor:
     contact_law: ContactLaw | None
     indentation_datum: str | None = "mid-plane"
     force_node: str | None = None     # defaults to the datum
-    # load.impactor.contact: nodal (default) | surface | {surface: {penalty_scale: s_p}}
+    # load.impactor.contact: nodal (default) | surface |
+    #   {surface: {enforcement: kinematic (default) | penalty, penalty_scale: s_p}}
     coupling: str = "nodal"
-    penalty_scale: float | None = None   # s_p of the surface coupling (section 5b)
+    enforcement: str | None = None       # surface coupling: kinematic | penalty (section 5b)
+    penalty_scale: float | None = None   # s_p of the penalty enforcement (section 5b)
 
 
 @dataclass
@@ -233,34 +235,47 @@ def _parse_mesh(data: dict) -> MeshSpec:
 
 NODAL_KEYS = ("youngs_modulus", "poisson_ratio", "contact_law", "indentation_datum", "force_node")
 PENALTY_SCALE_DEFAULT = 0.1
+ENFORCEMENTS = ("kinematic", "penalty")
 
 
-def _parse_coupling(c) -> tuple[str, float | None]:
-    """load.impactor.contact: nodal (default) | surface | {surface: {penalty_scale: s_p}},
-    s_p in (0, 1], default 0.1 (ALGORITHM.md section 5b)."""
+def _parse_coupling(c) -> tuple[str, str | None, float | None]:
+    """load.impactor.contact: nodal (default) | surface |
+    {surface: {enforcement: kinematic | penalty, penalty_scale: s_p}} (ALGORITHM.md section 5b):
+    the enforcement defaults to kinematic; penalty_scale, in (0, 1], default 0.1, belongs to the
+    penalty enforcement only (an error otherwise). Returns (coupling, enforcement, s_p)."""
     if c is None or c == "nodal":
-        return "nodal", None
+        return "nodal", None, None
     if c == "surface":
-        return "surface", PENALTY_SCALE_DEFAULT
+        return "surface", "kinematic", None
     if isinstance(c, dict) and len(c) == 1 and "surface" in c:
         opts = c["surface"] or {}
         if not isinstance(opts, dict):
             raise SceneError(f"load.impactor.contact.surface must be a mapping, got {opts!r}")
-        _refuse_unknown(opts, {"penalty_scale"}, "load.impactor.contact.surface")
+        _refuse_unknown(opts, {"enforcement", "penalty_scale"}, "load.impactor.contact.surface")
+        enf = str(opts.get("enforcement", "kinematic"))
+        if enf not in ENFORCEMENTS:
+            raise SceneError(f"load.impactor.contact.surface.enforcement must be kinematic | "
+                             f"penalty, got {enf!r}")
+        if enf != "penalty":
+            if "penalty_scale" in opts:
+                raise SceneError("load.impactor.contact.surface.penalty_scale belongs to the "
+                                 "penalty enforcement: give `enforcement: penalty` with it, or "
+                                 "remove it (the kinematic enforcement has no stiffness)")
+            return "surface", enf, None
         sp = float(opts.get("penalty_scale", PENALTY_SCALE_DEFAULT))
         if not (0.0 < sp <= 1.0):
             raise SceneError(f"load.impactor.contact.surface.penalty_scale must be in (0, 1], "
                              f"got {sp}")
-        return "surface", sp
-    raise SceneError(f"load.impactor.contact must be nodal | surface | "
-                     f"{{surface: {{penalty_scale: s}}}}, got {c!r}")
+        return "surface", enf, sp
+    raise SceneError(f"load.impactor.contact must be nodal | surface | {{surface: "
+                     f"{{enforcement: kinematic | penalty, penalty_scale: s}}}}, got {c!r}")
 
 
 def _parse_impactor(im: dict) -> Impactor:
     """load.impactor: mass, velocity, nose radius and the coupling: the nodal one (contact law,
     datum and force node) or the surface one (section 5b: rigid nose, no law)."""
     _refuse_unknown(im, {"mass", "velocity", "nose_radius", "contact", *NODAL_KEYS}, "load.impactor")
-    coupling, sp = _parse_coupling(im.get("contact"))
+    coupling, enforcement, sp = _parse_coupling(im.get("contact"))
     mass = _pos(_req(im, "mass", "load.impactor"), "load.impactor.mass")
     velocity = float(_req(im, "velocity", "load.impactor"))
     radius = _pos(_req(im, "nose_radius", "load.impactor"), "load.impactor.nose_radius")
@@ -270,7 +285,7 @@ def _parse_impactor(im: dict) -> Impactor:
                 raise SceneError(f"load.impactor.{key} belongs to the nodal coupling; "
                                  f"with contact: surface the nose is rigid: remove it")
         return Impactor(mass, velocity, radius, None, None, None, None, None,
-                        coupling="surface", penalty_scale=sp)
+                        coupling="surface", enforcement=enforcement, penalty_scale=sp)
     kind, val = _one_of(_req(im, "contact_law", "load.impactor"), "load.impactor.contact_law")
     if kind == "paper":
         law = ContactLaw("paper", length_unit=_pos(_req(val, "length_unit", "contact_law.paper"),

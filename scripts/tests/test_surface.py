@@ -1,8 +1,12 @@
 """The surface coupling of the rigid nose (ALGORITHM.md section 5b, `contact: surface`).
 
-Hand computations of the penalty stiffness, force and energy of single nodes, the energy as the
-force's potential, the stable step, the impactor's momentum against the trapezoidal impulse,
-the energy balance, the half model against the full one, the scene keys and the history layout.
+Penalty enforcement: hand computations of the stiffness, force and energy of single nodes, the
+energy as the force's potential, the stable step. Kinematic enforcement (the default): the
+closed-form active-set solve (linearised gaps closed, complementarity, a node predicted into the
+nose put back on its surface to the linearisation's order, fixed dofs take no force), the
+contact energy as minus the trapezoidal work. Both: the gap without cancellation, the impactor's
+momentum against the trapezoidal impulse, the energy balance, the half model against the full
+one, the scene keys and the history layout.
 """
 import math
 
@@ -14,6 +18,12 @@ from indep_fe.scene import SceneError
 from indep_fe.solver import _discretise, history_columns, simulate
 
 NODAL = ("youngs_modulus", "poisson_ratio", "contact_law", "indentation_datum")
+PENALTY = {"surface": {"enforcement": "penalty"}}
+ENFORCEMENTS = {"kinematic": "surface", "penalty": PENALTY}
+
+
+def penalty(s_p):
+    return {"surface": {"enforcement": "penalty", "penalty_scale": s_p}}
 
 
 def surface_scene(contact="surface", **over):
@@ -29,11 +39,23 @@ def surface_scene(contact="surface", **over):
 def test_surface_keys():
     sc = surface_scene()
     imp = sc.impactor
-    assert (imp.coupling, imp.penalty_scale) == ("surface", 0.1)
+    assert (imp.coupling, imp.enforcement, imp.penalty_scale) == ("surface", "kinematic", None)
     assert imp.contact_law is None and imp.youngs_modulus is None
-    assert surface_scene({"surface": {"penalty_scale": 0.3}}).impactor.penalty_scale == 0.3
-    assert surface_scene({"surface": {}}).impactor.penalty_scale == 0.1
+    for c in ({"surface": {}}, {"surface": None}, {"surface": {"enforcement": "kinematic"}}):
+        imp = surface_scene(c).impactor
+        assert (imp.enforcement, imp.penalty_scale) == ("kinematic", None)
+    imp = surface_scene(penalty(0.3)).impactor
+    assert (imp.enforcement, imp.penalty_scale) == ("penalty", 0.3)
+    assert surface_scene(PENALTY).impactor.penalty_scale == 0.1
     assert scene(**{"load.impactor.contact": "nodal"}).impactor.coupling == "nodal"
+
+
+@pytest.mark.parametrize("contact", [{"surface": {"penalty_scale": 0.2}},
+                                     {"surface": {"enforcement": "kinematic",
+                                                  "penalty_scale": 0.1}}])
+def test_penalty_scale_needs_the_penalty_enforcement(contact):
+    with pytest.raises(SceneError, match="penalty_scale belongs to the penalty enforcement"):
+        surface_scene(contact)
 
 
 @pytest.mark.parametrize("key, value", [("youngs_modulus", 207e9), ("poisson_ratio", 0.3),
@@ -45,9 +67,11 @@ def test_nodal_keys_are_refused_with_surface(key, value):
         surface_scene(**{f"load.impactor.{key}": value})
 
 
-@pytest.mark.parametrize("contact", [{"surface": {"penalty_scale": 0.0}},
-                                     {"surface": {"penalty_scale": 1.5}},
-                                     {"surface": {"penalty": 0.1}}, "paper", {"nodal": {}}])
+@pytest.mark.parametrize("contact", [penalty(0.0), penalty(1.5), penalty(-0.1),
+                                     {"surface": {"penalty": 0.1}},
+                                     {"surface": {"enforcement": "lagrange"}},
+                                     {"surface": {"enforcement": None}},
+                                     {"surface": "penalty"}, "paper", {"nodal": {}}])
 def test_bad_contact_is_refused(contact):
     with pytest.raises(SceneError):
         surface_scene(contact)
@@ -61,7 +85,7 @@ def test_nodal_coupling_still_needs_its_law():
 # ---------------------------------------------------------------- candidates, stiffness, step
 def test_candidates_and_penalty_stiffness_by_hand():
     sc = surface_scene(**{"load.impactor.nose_radius": 0.02,
-                          "load.impactor.contact": {"surface": {"penalty_scale": 0.25}}})
+                          "load.impactor.contact": penalty(0.25)})
     pl, _, _, dt_crit = _discretise(sc)
     nose, pm = pl.nose, pl.pm
     nx, ny = pm.nx, pm.ny                        # 10 x 4 half model, dx = 10 mm, dy = 5 mm
@@ -78,12 +102,12 @@ def test_candidates_and_penalty_stiffness_by_hand():
     assert dt_crit == pytest.approx(pl.dt_plate / math.sqrt(1.25), rel=1e-14)
     res = simulate(sc)
     assert res.summary["contact_step_factor"] == pytest.approx(1 / math.sqrt(1.25), rel=1e-14)
-    assert res.summary["contact_law"] == "surface(penalty_scale=0.25)"
+    assert res.summary["contact_law"] == "surface(penalty, penalty_scale=0.25)"
 
 
 def test_penalty_stiffness_takes_the_larger_neighbour_eigenvalue():
     """Graded mesh: node i takes max(lambda of elements (i-1, ny-1), (i, ny-1))."""
-    sc = surface_scene(**{"mesh.grading": 3.0})
+    sc = surface_scene(PENALTY, **{"mesh.grading": 3.0})
     pl, _, _, _ = _discretise(sc)
     from indep_fe.elements import elastic_matrix, element_eigenvalues, formulation, kinematics
     from indep_fe.material import lame
@@ -102,7 +126,7 @@ def test_penalty_stiffness_takes_the_larger_neighbour_eigenvalue():
 
 # ---------------------------------------------------------------- force and energy of one node
 def test_one_node_force_and_energy_by_hand():
-    sc = surface_scene(**{"load.impactor.nose_radius": 0.02})   # candidates x = 0.08, 0.09, 0.10
+    sc = surface_scene(PENALTY, **{"load.impactor.nose_radius": 0.02})   # x = 0.08, 0.09, 0.10
     pl, _, _, _ = _discretise(sc)
     nose = pl.nose
     R, h, ndof = 0.02, 0.02, 2 * pl.pm.n_nodes
@@ -130,7 +154,7 @@ def test_one_node_force_and_energy_by_hand():
 
 def test_penalty_energy_is_the_potential_of_the_force():
     """d(E_c / s)/d(u) = -f on every candidate dof (central differences)."""
-    sc = surface_scene(**{"load.impactor.nose_radius": 0.05})
+    sc = surface_scene(PENALTY, **{"load.impactor.nose_radius": 0.05})
     pl, _, _, _ = _discretise(sc)
     nose, s = pl.nose, pl.s
     rng = np.random.default_rng(1)
@@ -150,16 +174,208 @@ def test_penalty_energy_is_the_potential_of_the_force():
 
 
 def test_no_penetration_no_force():
-    pl, _, _, _ = _discretise(surface_scene())
+    pl, _, _, _ = _discretise(surface_scene(PENALTY))
     f, F, E, count, half = pl.nose.contact(np.zeros(2 * pl.pm.n_nodes), 0.0)
     assert F == 0.0 and E == 0.0 and count == 0.0 and half == 0.0 and not f.any()
 
 
+def test_gap_has_no_cancellation_near_R():
+    """g = (2 e R - e^2 - d_x^2) / (R + |d|) = R - |d| in reals; in doubles it keeps a depth e
+    far below ulp(R) (where R - |d| gives 0) and matches R - |d| elsewhere."""
+    for contact in ENFORCEMENTS.values():
+        pl, _, _, _ = _discretise(surface_scene(contact))
+        nose = pl.nose
+        axis = int(np.flatnonzero(nose.X[:, 0] == nose.x_c)[0])
+        uc = np.zeros((nose.nodes.size, 2))
+        for e in (1e-20, 3e-17, 1e-9):
+            dx, dy, dist, g = nose.gap(uc, e)
+            assert g[axis] == pytest.approx(e, rel=1e-15)          # on the axis g = e exactly
+        assert nose.R - (nose.R - 1e-20) == 0.0                   # what R - |d| would give
+        uc[:, 0] = np.linspace(-3e-4, 2e-4, nose.nodes.size)
+        uc[:, 1] = np.linspace(1e-4, -2e-4, nose.nodes.size)
+        dx, dy, dist, g = nose.gap(uc, 2.5e-4)
+        assert np.allclose(g, nose.R - np.hypot(dx, dy), rtol=0, atol=4 * np.spacing(nose.R))
+
+
+# ---------------------------------------------------------------- the kinematic solve
+def kinematic_nose(radius=0.5):
+    """The 10 x 4 half model's nose (kinematic) with the impactor in flight at t_n, n >= 1."""
+    sc = surface_scene(**{"load.impactor.nose_radius": radius})
+    pl, _, dt, dt_crit = _discretise(sc)
+    return pl, pl.nose, dt
+
+
+def corrected(nose, uc, vc, fc, dt, lam, nrm):
+    """Apply the solved forces for one step (section 6 step 3, section 5b impactor update):
+    candidate displacements and delta_S at t_{n+1}."""
+    up = uc + dt * (vc - dt * fc * nose.im)
+    un = up + dt * dt * nose.im * lam[:, None] * nrm
+    F = nose.s * float(np.sum(lam * (-nrm[:, 1])))
+    dn = nose.dS + dt * (nose.v_half - dt * F / nose.m_s)
+    return up, un, dn, F
+
+
+def solve_state(nose, dt, seed=3):
+    """A state at t_n with two to three candidates predicted into the nose: u, v, f_int."""
+    rng = np.random.default_rng(seed)
+    nc = nose.nodes.size
+    nose.dS, nose.v_half = 3.0e-4, 10.0
+    uc = np.stack([rng.uniform(-2e-5, 2e-5, nc), rng.uniform(-1e-4, 0.0, nc)], axis=1)
+    uc[nose.im[:, 0] == 0.0, 0] = 0.0                   # the symmetry node's u_x is fixed
+    vc = np.stack([rng.uniform(-0.5, 0.5, nc), rng.uniform(-2.0, 0.0, nc)], axis=1) * (nose.im > 0)
+    fc = np.stack([rng.uniform(-1e4, 1e4, nc), rng.uniform(-1e4, 1e4, nc)], axis=1)
+    return uc, vc, fc
+
+
+def test_kinematic_solve_closes_the_linearised_gaps():
+    """g_i / c = w_i lambda_i + r a_i S on the active set, lambda >= 0, complementarity off it,
+    S = sum a_i lambda_i; the active set found is the one the contract's iteration settles on."""
+    pl, nose, dt = kinematic_nose()
+    uc, vc, fc = solve_state(nose, dt)
+    lam, nrm, dx = nose.kinematic_forces(uc, vc, fc, dt, first=False)
+    up = uc + dt * (vc - dt * fc * nose.im)
+    _, _, dist, g = nose.gap(up, nose.dS + dt * nose.v_half)
+    w = nose.im[:, 0] * nrm[:, 0] ** 2 + nose.im[:, 1] * nrm[:, 1] ** 2
+    a, c, r = nrm[:, 1], dt * dt, nose.s / nose.m_s
+    act = lam > 0
+    assert 2 <= act.sum() < nose.nodes.size and np.all(lam >= 0)
+    S = float(np.sum(a * lam))
+    assert np.allclose((g / c)[act], (w * lam + r * a * S)[act], rtol=1e-12)
+    assert np.all((g / c - r * a * S)[~act] <= 0.0)
+    assert np.allclose(nrm[:, 0], dx / dist, rtol=1e-14)          # n = d / |d|, outward
+    assert np.allclose(np.hypot(*nrm.T), 1.0, rtol=1e-15) and np.all(nrm[:, 1] < 0)
+    assert nose.passes <= 3
+
+
+def test_predicted_node_is_put_back_on_the_surface():
+    """A node predicted into the nose ends, after the step with the solved forces (and the
+    impactor's recoil), on the nose's surface to the linearisation's order: |g_{n+1}| <= the
+    square of the correction over R; the axis node (d_x = 0, g linear in e) to round-off."""
+    pl, nose, dt = kinematic_nose()
+    uc, vc, fc = solve_state(nose, dt)
+    lam, nrm, _ = nose.kinematic_forces(uc, vc, fc, dt, first=False)
+    up, un, dn, F = corrected(nose, uc, vc, fc, dt, lam, nrm)
+    dp = nose.dS + dt * nose.v_half
+    g_pred = nose.gap(up, dp)[3]
+    g_new = nose.gap(un, dn)[3]
+    act = lam > 0
+    assert F > 0 and np.all(g_pred[act] > 1e-5)                  # well into the nose
+    corr = np.hypot(*(un - up).T) + abs(dn - dp)                  # how far the step moved it
+    assert np.all(np.abs(g_new[act]) <= corr[act] ** 2 / nose.R + 1e-15)
+    assert np.all(np.abs(g_new[act]) <= 1e-3 * g_pred[act])
+    axis = nose.X[:, 0] == nose.x_c
+    assert act[axis].all() and abs(g_new[axis][0]) <= 1e-18
+    assert np.all(g_new[~act] <= 0.0)                            # no node left inside
+
+
+def test_first_step_uses_half_the_velocity_step():
+    """n = 0: h = dt/2, c = dt^2/2, the impactor predicted with v0; the axis node of a plate at
+    rest is then put on the nose exactly: lambda = g/(c w) corrected for the recoil."""
+    pl, nose, dt = kinematic_nose(radius=0.02)          # only the axis node within reach
+    z = np.zeros((nose.nodes.size, 2))
+    lam, nrm, _ = nose.kinematic_forces(z, z, z, dt, first=True)
+    axis = nose.X[:, 0] == nose.x_c
+    assert np.all(lam[~axis] == 0.0)
+    g = dt * nose.v0                                      # e = delta_p = dt v0, d_x = 0
+    w, c, r = nose.im[axis, 1][0], dt * dt / 2, nose.s / nose.m_s
+    # g/c = w lam + r a S, a = -1, S = -lam
+    assert lam[axis][0] == pytest.approx(g / c / (w + r), rel=1e-14)
+    assert nrm[axis][0].tolist() == [0.0, -1.0]
+
+
+def test_fixed_dof_takes_no_force():
+    """A candidate whose dofs are all fixed (w = 0) is never active and does not change the
+    others' solution; a fixed u_x (the symmetry node) drops out of w."""
+    pl, nose, dt = kinematic_nose()
+    uc, vc, fc = solve_state(nose, dt)
+    lam, nrm, _ = nose.kinematic_forces(uc, vc, fc, dt, first=False)
+    axis = np.flatnonzero(nose.X[:, 0] == nose.x_c)[0]
+    assert nose.im[axis, 0] == 0.0 and nose.im[axis, 1] > 0.0 and lam[axis] > 0
+    assert nrm[axis, 0] == 0.0
+    j = np.flatnonzero((lam > 0) & (nose.X[:, 0] != nose.x_c))[0]
+    others = np.arange(nose.nodes.size) != j
+    # without candidate j altogether (far away) ...
+    uc_far = uc.copy()
+    uc_far[j, 1] = -0.01                                # 1 cm below the nose
+    lam_far, _, _ = nose.kinematic_forces(uc_far, vc, fc, dt, first=False)
+    assert lam_far[j] == 0.0
+    # ... and with j clamped (im = 0): the same forces on the others, none on j
+    im = nose.im.copy()
+    nose.im[j] = 0.0
+    lam_fix, _, _ = nose.kinematic_forces(uc, vc * (nose.im > 0), fc, dt, first=False)
+    nose.im = im
+    assert lam_fix[j] == 0.0
+    assert np.allclose(lam_fix[others], lam_far[others], rtol=1e-13)
+    # in a run the symmetry node's u_x stays 0 and the clamped ends never move
+    res_pl, _, _, _ = _discretise(surface_scene())
+    assert np.all(res_pl.inv_m[res_pl.pm.fixed_dofs] == 0.0)
+
+
+def test_kinematic_stable_step_and_description():
+    sc = surface_scene(**{"time.dt": {"cfl": 0.9}, "time.end": 2.0e-5})
+    pl, _, dt, dt_crit = _discretise(sc)
+    assert dt_crit == pl.dt_plate and dt == 0.9 * pl.dt_plate
+    assert not pl.nose.k.any()
+    res = simulate(sc)
+    assert res.summary["contact_step_factor"] == 1.0
+    assert res.summary["contact_law"] == "surface(kinematic)"
+    assert simulate(surface_scene(PENALTY, **{"time.end": 2.0e-5})).summary["contact_law"] == \
+        "surface(penalty, penalty_scale=0.1)"
+
+
+def test_kinematic_contact_energy_is_minus_the_work():
+    """E_c,n = -(sum of the trapezoidal work of the contact forces on the candidates and on the
+    impactor), recomputed step by step from the forces and positions the solver used; it stays
+    >= 0 (the kinematic contact only dissipates, here) and below 5 % of the impact energy."""
+    from indep_fe.surface import SurfaceNose
+    seen = []
+    orig = SurfaceNose.solve
+
+    def spy(self, u, v_half, f_int, dt, first):
+        di = orig(self, u, v_half, f_int, dt, first)
+        seen.append((self.candidate_u(u), self.f.copy(), self.F, self.dS, self.energy, self.s))
+        return di
+
+    SurfaceNose.solve = spy
+    try:
+        res = simulate(surface_scene(**{"time.end": 6.0e-4, "output.every": None}))
+    finally:
+        SurfaceNose.solve = orig
+    Ec = res.column("contact_energy_J")
+    assert len(seen) == len(Ec)
+    W, want = 0.0, [0.0]
+    for (u0, f0, F0, d0, _, s), (u1, f1, F1, d1, _, _) in zip(seen, seen[1:]):
+        W += s * float(np.sum((f0 + f1) / 2 * (u1 - u0))) - (F0 + F1) / 2 * (d1 - d0)
+        want.append(-W)
+    want = np.array(want)
+    assert np.allclose(Ec, want, rtol=0, atol=1e-12 * np.abs(want).max())
+    assert np.allclose(Ec, [e[4] for e in seen], rtol=0, atol=0)
+    assert Ec.max() > 0 and Ec.min() >= -1e-9 * Ec.max()
+    assert Ec.max() < 0.05 * 0.5 * 18.0 * 10.0 ** 2
+
+
+def test_kinematic_first_step_force_and_axis_node_on_the_nose():
+    """The force at t_0 is solved from the prediction (the plate at rest, the impactor at v0):
+    F_0 > 0; the axis node (d_x = 0, its gap linear) then follows the nose: indentation
+    delta_S + u_y = 0 to round-off at every step after one where it was in contact (odd
+    count: the axis node is counted once in the half model)."""
+    res = simulate(surface_scene(**{"time.end": 3.0e-4, "output.every": None}))
+    F = res.column("contact_force_N")
+    n = res.column("nodes_in_contact")
+    ind = res.column("indentation_m")
+    assert F[0] > 0 and n[0] == 1.0
+    axis_on = (n[:-1] % 2) == 1
+    assert axis_on.sum() > 100
+    assert np.abs(ind[1:][axis_on]).max() <= 1e-12 * np.abs(res.column("impactor_displacement_m")).max()
+    assert np.abs(ind[1:][~axis_on]).max() > 1e-8      # it does separate
+
+
 # ---------------------------------------------------------------- whole runs
+@pytest.mark.parametrize("enforcement", ENFORCEMENTS)
 @pytest.mark.parametrize("plastic", [False, True])
-def test_impactor_momentum_equals_the_trapezoidal_impulse(plastic):
+def test_impactor_momentum_equals_the_trapezoidal_impulse(plastic, enforcement):
     over = {"material.plasticity": PLASTIC} if plastic else {}
-    res = simulate(surface_scene(**over))
+    res = simulate(surface_scene(ENFORCEMENTS[enforcement], **over))
     s = res.summary
     F = res.column("contact_force_N")
     assert s["peak_contact_force_N"] > 1e5 and s["impulse_Ns"] > 10.0
@@ -169,15 +385,19 @@ def test_impactor_momentum_equals_the_trapezoidal_impulse(plastic):
     # the history's velocity is v_S,n of section 5b: v0 at t = 0, then below it
     v = res.column("impactor_velocity_mps")
     assert v[0] == 10.0 and v[-1] == s["final_impactor_velocity_mps"]
-    assert F[0] == 0.0
+    # penalty: F_0 = 0 (the plate is touched, not penetrated); kinematic: solved at t_0
+    assert (F[0] == 0.0) if enforcement == "penalty" else (F[0] > 0.0)
 
 
-def test_energy_balance_and_columns():
-    res = simulate(surface_scene(**{"time.end": 6.0e-4}))
+@pytest.mark.parametrize("enforcement", ENFORCEMENTS)
+def test_energy_balance_and_columns(enforcement):
+    res = simulate(surface_scene(ENFORCEMENTS[enforcement], **{"time.end": 6.0e-4}))
     assert res.columns == history_columns(["A"], impact=True, surface=True)
     i = res.columns.index("impactor_velocity_mps")
     assert res.columns[i + 1:i + 3] == ["contact_half_width_m", "nodes_in_contact"]
-    assert res.summary["max_energy_balance_error"] < 1e-3
+    # kinematic: the nodes' arrivals on the nose leave an imbalance of 2.1e-3 on this coarse
+    # 10 x 4 mesh, converging at second order (5.3e-4 at 20 x 8, 1.3e-4 at 40 x 16, dt / k)
+    assert res.summary["max_energy_balance_error"] < (1e-3 if enforcement == "penalty" else 3e-3)
     n = res.column("nodes_in_contact")
     assert n.max() >= 3 and np.array_equal(n, np.round(n))
     assert res.summary["max_nodes_in_contact"] >= n.max()
@@ -185,16 +405,33 @@ def test_energy_balance_and_columns():
     # indentation = delta_S + u_y of the top mid-span node
     assert np.array_equal(res.column("indentation_m"),
                           res.column("impactor_displacement_m") + res.column("top_uy_m"))
-    # contact energy, force and half-width vanish together
     F, Ec = res.column("contact_force_N"), res.column("contact_energy_J")
-    assert np.array_equal(F == 0, Ec == 0) and np.array_equal(F == 0, n == 0)
+    assert np.array_equal(F == 0, n == 0)
+    if enforcement == "penalty":
+        # the penalty energy vanishes with the force (the kinematic one is the work done so far)
+        assert np.array_equal(F == 0, Ec == 0)
 
 
-def test_half_model_equals_full_model():
-    half = simulate(surface_scene(**{"time.end": 3.0e-4}))
-    full = simulate(surface_scene(**{"time.end": 3.0e-4, "mesh.model": "full", "mesh.nx": 20}))
-    for c in ("contact_force_N", "mid_uy_m", "impactor_velocity_mps", "nodes_in_contact",
-              "contact_half_width_m", "contact_energy_J", "strain_energy_J"):
-        a, b = half.column(c), full.column(c)
-        assert np.abs(a - b).max() <= 1e-9 * np.abs(a).max(), c
+@pytest.mark.parametrize("enforcement", ENFORCEMENTS)
+def test_half_model_equals_full_model(enforcement):
+    c = ENFORCEMENTS[enforcement]
+    half = simulate(surface_scene(c, **{"time.end": 3.0e-4}))
+    full = simulate(surface_scene(c, **{"time.end": 3.0e-4, "mesh.model": "full", "mesh.nx": 20}))
+    for col in ("contact_force_N", "mid_uy_m", "impactor_velocity_mps", "nodes_in_contact",
+                "contact_half_width_m", "contact_energy_J", "strain_energy_J"):
+        a, b = half.column(col), full.column(col)
+        assert np.abs(a - b).max() <= 1e-9 * np.abs(a).max(), col
     assert half.summary["max_nodes_in_contact"] == full.summary["max_nodes_in_contact"] >= 3
+
+
+@pytest.mark.parametrize("enforcement", ENFORCEMENTS)
+def test_surface_scene_is_energy_consistent(enforcement):
+    """Section 5b: the surface scenes take section 7's 0.1 bound (from step 100 on): a step
+    above the critical one stops the run there, long before the 10x blow-up guard."""
+    from indep_fe.solver import UnstableRun
+    pl, _, _, dt_crit = _discretise(surface_scene(ENFORCEMENTS[enforcement]))
+    sc = surface_scene(ENFORCEMENTS[enforcement], **{
+        "time.dt": {"fixed": 1.3 * dt_crit}, "time.allow_unstable_dt": True,
+        "time.end": 2.0e-3})
+    with pytest.raises(UnstableRun, match=r"above 0.1 x the energy scale"):
+        simulate(sc)
