@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
-use impact_solver::scene::{ElementKind, End, Load, MidSpanNode, Model};
+use impact_solver::scene::{
+    ElementKind, End, Enforcement, Load, MidSpanNode, Model, SurfaceContact, SurfaceImpactor,
+};
 use impact_solver::{simulate, Outcome, Quiet, Scene};
 
 const ELASTIC: &str = include_str!("../../verification/scenes/example-elastic.yaml");
@@ -280,7 +282,27 @@ fn results_are_bit_identical_on_one_and_two_threads() {
     scene.mesh.nx = 128;
     scene.mesh.ny = 32;
     scene.time.end = End::At(5e-5);
-    let on = |threads: usize| impact_solver::workers::with_threads(threads, || run(&scene));
+    assert_bit_identical_on_one_and_two_threads(&scene);
+    // The surface coupling (both enforcements): its contact solve reads the team's forces.
+    let i = scene.impactor().unwrap().clone();
+    for enforcement in [Enforcement::Kinematic, Enforcement::Penalty] {
+        scene.load = Load::SurfaceImpactor(SurfaceImpactor {
+            mass: i.mass,
+            velocity: i.velocity,
+            nose_radius: i.nose_radius,
+            contact: SurfaceContact {
+                enforcement,
+                penalty_scale: SurfaceContact::DEFAULT_PENALTY_SCALE,
+            },
+        });
+        assert_bit_identical_on_one_and_two_threads(&scene);
+    }
+}
+
+/// `scene` (a plastic model large enough for the team) run on one and two threads: every
+/// history value and the balance error the same bits.
+fn assert_bit_identical_on_one_and_two_threads(scene: &Scene) {
+    let on = |threads: usize| impact_solver::workers::with_threads(threads, || run(scene));
     // The second run really assembles on two threads (a plastic model of this size).
     let mesh = impact_solver::mesh::PlateMesh::new(&scene.plate, &scene.mesh);
     let assembly = |threads: usize| {

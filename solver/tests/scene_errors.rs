@@ -313,3 +313,107 @@ fn every_run_refuses_a_billion_elements_before_allocating() {
         .to_string();
     assert_mentions(&err, &["--max-memory"]);
 }
+
+/// The example's impactor under the surface coupling: its nodal keys replaced by `contact`.
+fn surface(s: &str, contact: &str) -> String {
+    let start = s
+        .find("    youngs_modulus: 207.0e9\n    poisson_ratio")
+        .unwrap();
+    let end = s.find("  # instead of impactor").unwrap();
+    format!("{}    contact: {contact}\n{}", &s[..start], &s[end..])
+}
+
+#[test]
+fn the_surface_coupling_is_read_with_its_options() {
+    use impact_solver::scene::{Enforcement, Load};
+    let read = |contact: &str| Scene::from_yaml(&surface(EXAMPLE, contact), Path::new("s.yaml"));
+    let Load::SurfaceImpactor(i) = read("surface").unwrap().load else {
+        panic!("contact: surface must give the surface coupling")
+    };
+    assert_eq!(i.contact.enforcement, Enforcement::Kinematic);
+    let Load::SurfaceImpactor(i) = read("{surface: {enforcement: penalty, penalty_scale: 0.3}}")
+        .unwrap()
+        .load
+    else {
+        panic!("the penalty options must give the surface coupling")
+    };
+    assert_eq!(
+        (i.contact.enforcement, i.contact.penalty_scale),
+        (Enforcement::Penalty, 0.3)
+    );
+    assert!(
+        matches!(read("nodal"), Err(_)),
+        "nodal without its law is refused"
+    );
+}
+
+#[test]
+fn surface_coupling_errors_name_the_field_and_what_is_allowed() {
+    let refused = |text: String| {
+        Scene::from_yaml(&text, Path::new("bad.yaml"))
+            .err()
+            .expect("the scene must be refused")
+            .to_string()
+    };
+    // A nodal key with the surface coupling: named where it is written.
+    let e = refused(EXAMPLE.replace(
+        "    indentation_datum: mid-plane",
+        "    indentation_datum: mid-plane\n    contact: surface",
+    ));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:14:",
+            "load.impactor.youngs_modulus",
+            "nodal coupling",
+            "remove it",
+        ],
+    );
+    let e = refused(
+        surface(EXAMPLE, "surface")
+            .replace("    contact:", "    force_node: top-surface\n    contact:"),
+    );
+    assert_mentions(
+        &e,
+        &["bad.yaml:14:", "load.impactor.force_node", "nodal coupling"],
+    );
+    // The nodal coupling without its law: named, with the way out.
+    let e = refused(EXAMPLE.replace("    contact_law: {paper: {length_unit: 1.0}}", ""));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:11:",
+            "load.impactor.contact_law",
+            "missing",
+            "contact: surface",
+        ],
+    );
+    // Options that make no sense, values out of range, unknown words.
+    let e = refused(surface(EXAMPLE, "{surface: {penalty_scale: 0.2}}"));
+    assert_mentions(
+        &e,
+        &[
+            "load.impactor.contact.surface.penalty_scale",
+            "enforcement: penalty",
+        ],
+    );
+    let e = refused(surface(
+        EXAMPLE,
+        "{surface: {enforcement: penalty, penalty_scale: 2.0}}",
+    ));
+    assert_mentions(
+        &e,
+        &["load.impactor.contact.surface.penalty_scale", "2", "(0, 1]"],
+    );
+    let e = refused(surface(EXAMPLE, "sticky"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:14:",
+            "unknown contact `sticky`",
+            "`nodal`, `surface`",
+        ],
+    );
+    let e = refused(surface(EXAMPLE, "{surface: {enforcement: glue}}"));
+    assert_mentions(&e, &["bad.yaml:14:", "glue"]);
+}

@@ -190,10 +190,7 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
     if let (Some((mass, v0)), Some(vf)) = (scene.impactor_motion(), s.final_impactor_velocity) {
         metrics.insert("momentum_change_Ns".into(), mass * (v0 - vf));
         metrics.insert("final_momentum_kgmps".into(), mass * vf);
-        metrics.insert(
-            "initial_kinetic_J".into(),
-            0.5 * mass * v0 * v0,
-        );
+        metrics.insert("initial_kinetic_J".into(), 0.5 * mass * v0 * v0);
         for (k, v) in impact_discriminators(mass, v0, s.impulse, vf) {
             metrics.insert(k.into(), v);
         }

@@ -124,7 +124,11 @@ fn series_values_plot(p: &serde_json::Value, all: &serde_json::Value) -> Option<
     let mut series: Vec<Series> = Vec::new();
     for name in strings(&p["series"]) {
         let sd = &all[name];
-        let levels: Vec<f64> = sd["levels"].as_array()?.iter().filter_map(|x| x.as_f64()).collect();
+        let levels: Vec<f64> = sd["levels"]
+            .as_array()?
+            .iter()
+            .filter_map(|x| x.as_f64())
+            .collect();
         let values = sd["metrics"][metric].as_array()?;
         let coarsest = levels.iter().copied().fold(f64::INFINITY, f64::min);
         let pts = levels
@@ -135,7 +139,10 @@ fn series_values_plot(p: &serde_json::Value, all: &serde_json::Value) -> Option<
         series.push((name.to_string(), pts, false));
     }
     let x = Axis::new("log10 (element size / coarsest element size)", "");
-    Some((title.to_string(), svg_plot(title, x, Axis::new(&label, unit), &series)))
+    Some((
+        title.to_string(),
+        svg_plot(title, x, Axis::new(&label, unit), &series),
+    ))
 }
 
 /// The x axis of a convergence plot: log10 of the refined size over the coarsest one.

@@ -73,12 +73,18 @@ impl Estimate {
             Some(every) => (end / every).ceil().min(steps) + 1.0,
             None => steps + 1.0,
         };
-        let history_columns = 2
-            + if scene.impactor_motion().is_some() { 3 } else { 0 }
-            + if scene.surface_impactor().is_some() { 2 } else { 0 }
-            + 3
-            + 5 * scene.output.probes.len()
-            + 8;
+        let history_columns =
+            2 + if scene.impactor_motion().is_some() {
+                3
+            } else {
+                0
+            } + if scene.surface_impactor().is_some() {
+                2
+            } else {
+                0
+            } + 3
+                + 5 * scene.output.probes.len()
+                + 8;
         let per_element = match scene.mesh.element {
             ElementKind::Q4Full => BYTES_PER_ELEMENT_FULL,
             ElementKind::Q4Sri => BYTES_PER_ELEMENT_SRI,

@@ -277,7 +277,9 @@ impl<'de> serde::de::Visitor<'de> for ContactVisitor {
     ) -> std::result::Result<ContactFile, A::Error> {
         use serde::de::Error as _;
         let Some(key) = map.next_key::<String>()? else {
-            return Err(A::Error::custom("expected `{surface: {penalty_scale: ...}}`"));
+            return Err(A::Error::custom(
+                "expected `{surface: {penalty_scale: ...}}`",
+            ));
         };
         if key != "surface" {
             return Err(A::Error::custom(format!(
@@ -1055,16 +1057,31 @@ impl Validator<'_> {
                     mass,
                     velocity,
                     nose_radius,
-                    youngs_modulus: self.required(&i.youngs_modulus, i, "youngs_modulus", POSITIVE)?,
+                    youngs_modulus: self.required(
+                        &i.youngs_modulus,
+                        i,
+                        "youngs_modulus",
+                        POSITIVE,
+                    )?,
                     poisson_ratio: self.required(&i.poisson_ratio, i, "poisson_ratio", POISSON)?,
                     contact_law: self.contact_law(i, plate)?,
-                    indentation_datum: i.indentation_datum.as_ref().map_or_else(MidSpanNode::default, |d| d.value),
-                    force_node: i.force_node.as_ref().or(i.indentation_datum.as_ref()).map_or_else(MidSpanNode::default, |d| d.value),
+                    indentation_datum: i
+                        .indentation_datum
+                        .as_ref()
+                        .map_or_else(MidSpanNode::default, |d| d.value),
+                    force_node: i
+                        .force_node
+                        .as_ref()
+                        .or(i.indentation_datum.as_ref())
+                        .map_or_else(MidSpanNode::default, |d| d.value),
                 }))
             }
         };
         self.refuse_nodal_keys(i)?;
-        let enforcement = surface.enforcement.as_ref().map_or_else(Enforcement::default, |e| e.value);
+        let enforcement = surface
+            .enforcement
+            .as_ref()
+            .map_or_else(Enforcement::default, |e| e.value);
         let penalty_scale = match &surface.penalty_scale {
             None => SurfaceContact::DEFAULT_PENALTY_SCALE,
             Some(v) if enforcement == Enforcement::Kinematic => {
@@ -1096,7 +1113,13 @@ impl Validator<'_> {
     }
 
     /// A key the nodal coupling needs: missing is an error at the impactor's `mass`.
-    fn required(&self, value: &Option<Num>, i: &ImpactorFile, key: &str, rule: Rule) -> Result<f64> {
+    fn required(
+        &self,
+        value: &Option<Num>,
+        i: &ImpactorFile,
+        key: &str,
+        rule: Rule,
+    ) -> Result<f64> {
         let field = format!("load.impactor.{key}");
         match value {
             Some(v) => self.check(v, &field, rule),
@@ -1114,14 +1137,28 @@ impl Validator<'_> {
     fn refuse_nodal_keys(&self, i: &ImpactorFile) -> Result<()> {
         let why = "belongs to the nodal coupling; with `contact: surface` the nose is rigid and its force comes from the plate's top surface: remove it";
         let given: [(&str, Option<SourceLocation>); 5] = [
-            ("youngs_modulus", i.youngs_modulus.as_ref().map(|v| self.at(v))),
-            ("poisson_ratio", i.poisson_ratio.as_ref().map(|v| self.at(v))),
+            (
+                "youngs_modulus",
+                i.youngs_modulus.as_ref().map(|v| self.at(v)),
+            ),
+            (
+                "poisson_ratio",
+                i.poisson_ratio.as_ref().map(|v| self.at(v)),
+            ),
             ("contact_law", i.contact_law.as_ref().map(|v| self.at(v))),
-            ("indentation_datum", i.indentation_datum.as_ref().map(|v| self.at(v))),
+            (
+                "indentation_datum",
+                i.indentation_datum.as_ref().map(|v| self.at(v)),
+            ),
             ("force_node", i.force_node.as_ref().map(|v| self.at(v))),
         ];
         match given.into_iter().find_map(|(k, at)| at.map(|at| (k, at))) {
-            Some((key, at)) => Err(Error::invalid(at, format!("load.impactor.{key}"), "given", why)),
+            Some((key, at)) => Err(Error::invalid(
+                at,
+                format!("load.impactor.{key}"),
+                "given",
+                why,
+            )),
             None => Ok(()),
         }
     }
@@ -1139,10 +1176,15 @@ impl Validator<'_> {
         };
         Ok(match &law.value {
             ContactLawFile::Paper { length_unit } => ContactLawChoice::Paper {
-                length_unit: self.check(length_unit, &f("contact_law.paper.length_unit"), POSITIVE)?,
+                length_unit: self.check(
+                    length_unit,
+                    &f("contact_law.paper.length_unit"),
+                    POSITIVE,
+                )?,
             },
             ContactLawFile::Johnson { datum_depth } => {
-                let depth = self.check(datum_depth, &f("contact_law.johnson.datum_depth"), POSITIVE)?;
+                let depth =
+                    self.check(datum_depth, &f("contact_law.johnson.datum_depth"), POSITIVE)?;
                 if depth > plate.thickness {
                     return self.fail(
                         datum_depth,

@@ -110,7 +110,10 @@ impl Summary {
             Load::SurfaceImpactor(i) => match i.contact.enforcement {
                 Enforcement::Kinematic => "surface(kinematic)".to_string(),
                 Enforcement::Penalty => {
-                    format!("surface(penalty, penalty_scale={})", i.contact.penalty_scale)
+                    format!(
+                        "surface(penalty, penalty_scale={})",
+                        i.contact.penalty_scale
+                    )
                 }
             },
             Load::Impactor(i) => match i.contact_law {

@@ -137,7 +137,11 @@ mod tests {
         assert_eq!(body.velocity(dt, 0.0), 10.0);
         let mut x = 0.0;
         for (n, f) in [1.0, 2.0, 3.0].into_iter().enumerate() {
-            let v_half = if n == 0 { 10.0 - 0.25 * f / m } else { body.half_step_velocity - dt * f / m };
+            let v_half = if n == 0 {
+                10.0 - 0.25 * f / m
+            } else {
+                body.half_step_velocity - dt * f / m
+            };
             x += dt * v_half;
             body.advance(dt, f);
             assert_eq!(body.half_step_velocity, v_half);

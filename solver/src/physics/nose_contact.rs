@@ -190,7 +190,12 @@ impl NoseSurface {
         out: &mut NoseForces,
     ) {
         self.predict(predicted, inverse_mass, delta, scratch);
-        let KinematicScratch { g, normal, mobility, active } = scratch;
+        let KinematicScratch {
+            g,
+            normal,
+            mobility,
+            active,
+        } = scratch;
         let mut sum = 0.0;
         for _ in 0..MAX_ACTIVE_SET_PASSES {
             let (mut num, mut den) = (0.0, 1.0);
@@ -327,7 +332,11 @@ mod tests {
         nose().kinematic(&predicted, &im, 0.1, 0.5, 0.01, &mut scratch, &mut out);
         assert_eq!(out.in_contact, 1);
         let lambda = 0.1 / (0.01 * 1.5);
-        assert!((out.on_node[0][1] + lambda).abs() < 1e-9 * lambda, "{:?}", out.on_node);
+        assert!(
+            (out.on_node[0][1] + lambda).abs() < 1e-9 * lambda,
+            "{:?}",
+            out.on_node
+        );
         assert_eq!(out.on_node[1], [0.0, 0.0]);
         // The node moves down by c lambda / m, the nose up by c r lambda: the gap closes.
         let closed = 0.01 * lambda + 0.01 * 0.5 * lambda;

@@ -237,7 +237,9 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     loop {
         let t = n as f64 * dt;
         // 1: internal forces at u_n; 2: the force on the plate at t_n.
-        let element_energy = stepper.model.internal_forces(&stepper.u, &mut stepper.f_int);
+        let element_energy = stepper
+            .model
+            .internal_forces(&stepper.u, &mut stepper.f_int);
         let applied = stepper.applied(n, t);
         recorder.contact(t, applied);
         let stop = clock.stop(n, t, dt, recorder.separated_at());

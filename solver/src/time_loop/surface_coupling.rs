@@ -56,7 +56,12 @@ impl SurfaceImpact {
         let inverse_mass = nose
             .nodes
             .iter()
-            .map(|n| [model.inverse_mass[2 * n.node], model.inverse_mass[2 * n.node + 1]])
+            .map(|n| {
+                [
+                    model.inverse_mass[2 * n.node],
+                    model.inverse_mass[2 * n.node + 1],
+                ]
+            })
             .collect();
         SurfaceImpact {
             body: CentralDifferenceImpactor::new(spec.mass, spec.velocity),
