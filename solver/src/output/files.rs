@@ -336,8 +336,9 @@ fn publish(staging: &Path, out_dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// One VTK UnstructuredGrid (ASCII XML) frame: nodal displacement and velocity, element
-/// stress (average of the integration points), von Mises stress and equivalent plastic strain.
+/// One VTK UnstructuredGrid (ASCII XML) frame: nodal displacement and velocity (and the
+/// nose's force on the nodes under the surface coupling), element stress (average of the
+/// integration points), von Mises stress and equivalent plastic strain.
 fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
     let io = |e| Error::write(path, e);
     let mut w = BufWriter::new(fs::File::create(path).map_err(io)?);
@@ -365,10 +366,14 @@ fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
         s.push_str("9\n");
     }
     s.push_str("</DataArray>\n</Cells>\n<PointData Vectors=\"displacement_m\">\n");
-    for (name, data) in [
+    let mut vectors = vec![
         ("displacement_m", &frame.displacement),
         ("velocity_mps", &frame.velocity),
-    ] {
+    ];
+    if let Some(f) = &frame.contact_force {
+        vectors.push(("contact_force_N", f));
+    }
+    for (name, data) in vectors {
         let _ = writeln!(s, "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"3\" format=\"ascii\">");
         for d in data {
             let _ = writeln!(s, "{} {} 0", d[0], d[1]);

@@ -187,6 +187,9 @@ pub struct FieldFrame {
     pub stress: Vec<Stress>,
     pub von_mises: Vec<f64>,
     pub eqps: Vec<f64>,
+    /// Surface coupling: the nose's force on each node at `t_n`, N (whole width; 0 off the
+    /// contact).
+    pub contact_force: Option<Vec<[f64; 2]>>,
 }
 
 /// Receives field frames and progress while a run goes on.
@@ -355,7 +358,11 @@ impl<'o> Watch<'o> {
         stepper: &Stepper<F, M>,
     ) -> Result<()> {
         if self.wants_fields && (self.frames.due(n, stepper.dt) || last) {
-            let frame = field_frame(stepper.model, &stepper.u, &stepper.v, t);
+            let mut frame = field_frame(stepper.model, &stepper.u, &stepper.v, t);
+            frame.contact_force = stepper
+                .surface
+                .as_ref()
+                .map(|c| c.nodal_forces(frame.displacement.len()));
             self.observer.fields(frame)?;
         }
         if n % self.progress_every == 0 {
@@ -799,5 +806,6 @@ fn field_frame<F: Formulation, M: ConstitutiveModel>(
         von_mises: averages.iter().map(|a| von_mises(&a.0)).collect(),
         eqps: averages.iter().map(|a| a.1).collect(),
         stress: averages.into_iter().map(|a| a.0).collect(),
+        contact_force: None,
     }
 }

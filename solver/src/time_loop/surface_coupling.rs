@@ -181,6 +181,16 @@ impl SurfaceImpact {
         [d + top_uy, d, self.body.velocity(dt, self.force())]
     }
 
+    /// The nose's force on every node of the mesh (`n_nodes` of them) at `t_n`, N, for a field
+    /// frame.
+    pub fn nodal_forces(&self, n_nodes: usize) -> Vec<[f64; 2]> {
+        let mut f = vec![[0.0; 2]; n_nodes];
+        for (n, force) in self.nose.nodes.iter().zip(&self.forces.on_node) {
+            f[n.node] = *force;
+        }
+        f
+    }
+
     /// Contact half-width (m, from the axis; current positions, or the predicted ones the
     /// kinematic forces hold on the nose) and nodes in contact (whole plate: the half model's
     /// nodes off the axis counted twice) at `t_n`.

@@ -9,6 +9,7 @@ pub mod collapse;
 pub mod column_impact;
 pub mod driver;
 pub mod element_eigen;
+pub mod hertz_line;
 pub mod macneal_harder;
 pub mod manufactured;
 pub mod orders;
@@ -26,7 +27,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 13] = [
+pub const NAMES: [&str; 14] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -40,6 +41,7 @@ pub const NAMES: [&str; 13] = [
     "static-pulse",
     "thick-cylinder",
     "column-impact",
+    "hertz-line",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -58,6 +60,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "static-pulse" => static_pulse::static_pulse(p),
         "thick-cylinder" => thick_cylinder::thick_cylinder(p),
         "column-impact" => column_impact::column_impact(p),
+        "hertz-line" => hertz_line::hertz_line(p),
         _ => return None,
     })
 }
