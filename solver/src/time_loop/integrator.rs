@@ -20,8 +20,9 @@ use crate::physics::material::Elastic;
 use crate::physics::material::{von_mises, ConstitutiveModel, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::history::{
-    locate_probes, steps_to, HistorySink, Probe, Recorder, RunTotals, Sample, Schedule, StopReason,
+    locate_probes, HistorySink, Probe, Recorder, RunTotals, Sample, StopReason,
 };
+use crate::time_loop::schedule::{steps_to, Schedule};
 use crate::time_loop::stable_step::{self, Estimate, Spring};
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this

@@ -1,7 +1,7 @@
 //! The time loop and its recorder: the model factory ([`model`]), the central-difference loop
 //! ([`integrator`], eqs. 8-12 with 19-21) and the model's internal forces compiled once
 //! ([`internal_forces`]), its stable step ([`stable_step`], eq. 15), the energy balance
-//! ([`energy`]), what it records ([`history`]), and how it is watched and stopped
+//! ([`energy`]), what it records ([`history`]) and when ([`schedule`]), and how it is watched and stopped
 //! ([`progress`], [`interrupt`]).
 
 pub mod energy;
@@ -11,4 +11,5 @@ pub mod internal_forces;
 pub mod interrupt;
 pub mod model;
 pub mod progress;
+pub mod schedule;
 pub mod stable_step;
