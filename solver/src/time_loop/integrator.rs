@@ -221,6 +221,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
 ) -> Result<RunTotals> {
     let dt_critical = critical_step(scene, mesh, model);
     let dt = chosen_step(scene, dt_critical)?;
+    crate::input::time_step::check_steps(scene, dt)?;
     let probes = locate_probes(scene, mesh, &model.formulation)?;
     let clock = Clock::new(scene, dt);
     let mut watch = Watch::new(scene, observer, &clock);

@@ -1,10 +1,7 @@
 //! When the recorder writes: the output steps of `output.every` (history rows) and
 //! `output.fields.every` (field frames), `steps_to(k every, dt)` for k = 1, 2, ...
 
-/// Steps needed to reach time `t` with step `dt` (times within 1e-9 dt count as reached).
-pub(crate) fn steps_to(t: f64, dt: f64) -> u64 {
-    (t / dt - 1e-9).ceil().max(0.0) as u64
-}
+pub(crate) use crate::input::time_step::steps_to;
 
 /// A schedule of output steps every `every` s (every step when `None`): step 0 and the steps
 /// `steps_to(k every, dt)`, k = 1, 2, ..., each once.
