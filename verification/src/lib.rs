@@ -13,6 +13,8 @@ pub mod check_row;
 pub mod code_verification;
 pub mod data;
 pub mod diff;
+pub mod diff_input;
+pub mod diff_moves;
 pub mod discriminate;
 pub mod evidence_report;
 pub mod gci;
