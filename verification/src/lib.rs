@@ -26,6 +26,7 @@ pub mod repo;
 pub mod report;
 pub mod report_paper;
 pub mod report_plots;
+pub mod report_results;
 pub mod runner;
 pub mod shard;
 pub mod snapshot;
