@@ -17,6 +17,7 @@ use serde_json::Value;
 use crate::check::interpolate;
 pub use crate::diff_input::history_columns;
 use crate::diff_input::{check_comparable, read_summary};
+use crate::diff_moves::Move;
 
 /// Summary keys that measure the machine, not the result: shown, never compared.
 pub const TIMING_KEYS: [&str; 4] = [
@@ -157,7 +158,7 @@ impl RunDiff {
                 c.verdict.label()
             );
         }
-        s.push_str(&crate::diff_moves::listing(&crate::diff_moves::moves(self)));
+        s.push_str(&crate::diff_moves::listing(&self.moves()));
         let _ = writeln!(s, "{}", self.closing_line());
         s
     }
@@ -175,8 +176,28 @@ impl RunDiff {
             self.columns.len(),
             self.n_beyond(),
             self.tol,
-            crate::diff_moves::headline(&crate::diff_moves::moves(self))
+            crate::diff_moves::headline(&self.moves())
         )
+    }
+
+    /// What differs (within or beyond the tolerance), in the closing summary's order.
+    pub fn moves(&self) -> Vec<Move> {
+        let moved = |v: Verdict| matches!(v, Verdict::Within | Verdict::Beyond);
+        let keys = self.keys.iter().filter(|k| moved(k.verdict)).map(|k| {
+            let rel = k.rel.unwrap_or(f64::INFINITY);
+            Move::new(
+                &k.key,
+                rel,
+                k.verdict.label(),
+                format!("{} -> {}", k.a, k.b),
+            )
+        });
+        let columns = self
+            .columns
+            .iter()
+            .filter(|c| moved(c.verdict))
+            .map(|c| Move::new(&c.column, c.rel, c.verdict.label(), String::new()));
+        crate::diff_moves::sorted(keys.chain(columns).collect())
     }
 }
 

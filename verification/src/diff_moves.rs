@@ -6,8 +6,6 @@
 
 use std::fmt::Write as _;
 
-use crate::diff::{RunDiff, Verdict, TIMING_KEYS};
-
 /// Moves listed per group; the rest are counted (the tables above list everything).
 pub const LISTED: usize = 12;
 
@@ -18,42 +16,40 @@ pub struct Move {
     /// Relative to the column's peak (history) or to max(|A|, |B|) (summary); infinite for a
     /// changed text or a value in one run only.
     pub rel: f64,
-    pub verdict: Verdict,
+    /// Its verdict as the tables print it (`within`, `BEYOND`).
+    pub verdict: &'static str,
     /// `A -> B` for a summary key, empty for a column.
     pub values: String,
     pub bookkeeping: bool,
 }
 
-/// Whether a quantity is bookkeeping (a round-off residual or a wall-clock time), not physics.
-pub fn is_bookkeeping(name: &str) -> bool {
-    name.ends_with("error") || TIMING_KEYS.contains(&name)
+impl Move {
+    pub fn new(name: &str, rel: f64, verdict: &'static str, values: String) -> Move {
+        Move {
+            name: name.to_string(),
+            rel,
+            verdict,
+            values,
+            bookkeeping: is_bookkeeping(name),
+        }
+    }
 }
 
-/// The moves of `d`: physical ones first, each group by relative size, largest first (equal
-/// sizes in the tables' order).
-pub fn moves(d: &RunDiff) -> Vec<Move> {
-    let moved = |v: Verdict| matches!(v, Verdict::Within | Verdict::Beyond);
-    let keys = d.keys.iter().filter(|k| moved(k.verdict)).map(|k| Move {
-        name: k.key.clone(),
-        rel: k.rel.unwrap_or(f64::INFINITY),
-        verdict: k.verdict,
-        values: format!("{} -> {}", k.a, k.b),
-        bookkeeping: is_bookkeeping(&k.key),
-    });
-    let columns = d.columns.iter().filter(|c| moved(c.verdict)).map(|c| Move {
-        name: c.column.clone(),
-        rel: c.rel,
-        verdict: c.verdict,
-        values: String::new(),
-        bookkeeping: is_bookkeeping(&c.column),
-    });
-    let mut all: Vec<Move> = keys.chain(columns).collect();
-    all.sort_by(|x, y| {
+/// Whether a quantity is bookkeeping (a round-off residual), not physics. The wall-clock keys
+/// are bookkeeping too, but never moves: they are shown, not compared.
+pub fn is_bookkeeping(name: &str) -> bool {
+    name.ends_with("error")
+}
+
+/// `moves` in the order they are listed: physical ones first, each group by relative size,
+/// largest first (equal sizes in the tables' order).
+pub fn sorted(mut moves: Vec<Move>) -> Vec<Move> {
+    moves.sort_by(|x, y| {
         x.bookkeeping
             .cmp(&y.bookkeeping)
             .then(y.rel.total_cmp(&x.rel))
     });
-    all
+    moves
 }
 
 /// The list printed before the closing line (empty when nothing moved).
@@ -88,9 +84,7 @@ pub fn listing(moves: &[Move]) -> String {
             let _ = writeln!(
                 s,
                 "    {:w$}  moved {:>9.3e}  {}{values}",
-                m.name,
-                m.rel,
-                m.verdict.label()
+                m.name, m.rel, m.verdict
             );
         }
         if group.len() > LISTED {
