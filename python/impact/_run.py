@@ -65,7 +65,8 @@ def simulate(
             same protections: staged and moved in only on success; ``/``, the home folder and
             a non-empty folder holding no earlier run are refused; a run whose memory estimate
             exceeds the memory available is refused. None: nothing is written.
-        threads: threads for the element loop (>= 1). The solver assembles element forces on
+        threads: threads for the element loop, 1 to 4 x the cores (at most 256; else
+            ValueError). The solver assembles element forces on
             several threads only for costly kernels on large meshes (elasto-plastic, >= 256
             elements); every other run uses one thread whatever this says. Results are
             bit-identical for every thread count. None: one per core (as the CLI).
@@ -83,7 +84,7 @@ def simulate(
     """
     text, source = scene_text(scene)
     if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int)):
-        raise TypeError(f"threads must be an int >= 1 or None, not {threads!r}")
+        raise TypeError(f"threads must be an int from 1 to 4 x the cores, or None, not {threads!r}")
     summary, columns, arrays = _impact.simulate(
         text,
         source,

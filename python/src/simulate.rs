@@ -32,7 +32,7 @@ pub fn simulate<'py>(
     text: &str,
     source: PathBuf,
     out: Option<PathBuf>,
-    threads: Option<usize>,
+    threads: Option<Bound<'py, PyAny>>,
     overrides: Option<&str>,
 ) -> PyResult<NativeRun<'py>> {
     let overrides: Overrides = match overrides {
@@ -40,9 +40,7 @@ pub fn simulate<'py>(
             .map_err(|e| PyValueError::new_err(format!("overrides: {e}")))?,
         None => Overrides::new(),
     };
-    if threads == Some(0) {
-        return Err(PyValueError::new_err("threads must be >= 1 (or None)"));
-    }
+    let threads = threads.map(|t| thread_count(&t)).transpose()?;
     let outcome = py.detach(|| {
         let scene = Scene::from_yaml_with(text, &overrides, &source)?;
         let run = || run(&scene, out.as_deref());
@@ -68,6 +66,18 @@ pub fn simulate<'py>(
         })
         .collect();
     Ok((summary, history.columns.clone(), arrays))
+}
+
+/// `threads=` as a thread count: an integer from 1 to `thread_count::max_threads()`, else a
+/// ValueError naming `threads`, the value and what is allowed (also for integers beyond 64
+/// bits and negative ones, which pyo3 alone would report as an OverflowError).
+fn thread_count(threads: &Bound<'_, PyAny>) -> PyResult<usize> {
+    use impact_solver::kernels::thread_count::{check_threads, refusal};
+    let checked = match threads.extract::<u64>() {
+        Ok(n) => check_threads("threads", n),
+        Err(_) => Err(refusal("threads", &threads.repr()?.to_string())),
+    };
+    checked.map_err(PyValueError::new_err)
 }
 
 fn run(scene: &Scene, out: Option<&Path>) -> impact_solver::Result<Outcome> {

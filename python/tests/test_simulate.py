@@ -65,6 +65,10 @@ def test_threads_do_not_change_the_bits(small_scene):
     assert_same_history(one.history, two.history)
     with pytest.raises(ValueError, match="threads"):
         impact.simulate(small_scene, threads=0)
+    # Above 4 x the cores (at most 256): refused at once (10**9 threads never started).
+    for n in (10**9, 10**30, -3):
+        with pytest.raises(ValueError, match=rf"threads = {n}: must be an integer from 1 to \d+ "):
+            impact.simulate(small_scene, threads=n)
 
 
 def test_scene_errors_carry_the_cli_message(cli, small_scene, tmp_path):

@@ -417,3 +417,49 @@ fn surface_coupling_errors_name_the_field_and_what_is_allowed() {
     let e = refused(surface(EXAMPLE, "{surface: {enforcement: glue}}"));
     assert_mentions(&e, &["bad.yaml:14:", "glue"]);
 }
+
+#[test]
+fn a_time_step_that_makes_no_run_is_refused_before_the_run_naming_its_input() {
+    // density 1e-300: a P-wave speed of inf m/s, a step of 0 s (the run never ended); 1e300:
+    // a step of 5e141 s, which takes no step to time.end (the run hung in its first step);
+    // density 1e-200: ~1e105 steps. The estimate refuses them before anything is allocated
+    // (every run checks it), with the input and its value.
+    for (density, words) in [
+        (
+            "1e-300",
+            &[
+                "material.density = 1e-300:",
+                "comes out as 0.000e0 s",
+                "P-wave speed inf",
+            ][..],
+        ),
+        (
+            "1e300",
+            &["material.density = 1e300:", "the run would take no step"][..],
+        ),
+        (
+            "1e-200",
+            &[
+                "material.density = 1e-200:",
+                "time steps of",
+                "more than the 1.00e12",
+            ][..],
+        ),
+    ] {
+        let text = EXAMPLE.replace("density: 7850.0", &format!("density: {density}"));
+        let scene = Scene::from_yaml(&text, Path::new("steps.yaml")).unwrap();
+        let estimate = impact_solver::budget::Estimate::of(&scene);
+        let err = impact_solver::budget::check(&scene, &estimate, None)
+            .err()
+            .unwrap_or_else(|| panic!("density {density}: no refusal"))
+            .to_string();
+        assert!(err.starts_with("steps.yaml: material.density"), "{err}");
+        assert_mentions(&err, words);
+        assert_mentions(
+            &err,
+            &["a run needs a finite time step > 0 s and 1 to 1.00e12 steps"],
+        );
+        let run = impact_solver::simulate(&scene, &mut impact_solver::Quiet);
+        assert_eq!(run.err().map(|e| e.to_string()), Some(err));
+    }
+}

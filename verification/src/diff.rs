@@ -3,15 +3,21 @@
 //! column, the largest absolute difference on A's time grid (B interpolated linearly onto
 //! it, over the times both runs cover) and that difference relative to the column's peak
 //! magnitude in A. A difference is "beyond" when its relative size exceeds `--tol`; the
-//! wall-clock keys are shown but never compared (they differ on every run).
+//! wall-clock keys are shown but never compared (they differ on every run). What cannot be
+//! compared is refused ([`crate::diff_input`]: NaN, a time that does not increase, a summary
+//! that is no object) and so are two runs without a common time window; the closing summary
+//! lists the moves physical first ([`crate::diff_moves`]).
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use serde_json::Value;
 
 use crate::check::interpolate;
+pub use crate::diff_input::history_columns;
+use crate::diff_input::{check_comparable, read_summary};
+use crate::diff_moves::Move;
 
 /// Summary keys that measure the machine, not the result: shown, never compared.
 pub const TIMING_KEYS: [&str; 4] = [
@@ -35,7 +41,7 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    fn label(self) -> &'static str {
+    pub fn label(self) -> &'static str {
         match self {
             Verdict::Same => "same",
             Verdict::Within => "within",
@@ -152,30 +158,46 @@ impl RunDiff {
                 c.verdict.label()
             );
         }
+        s.push_str(&crate::diff_moves::listing(&self.moves()));
         let _ = writeln!(s, "{}", self.closing_line());
         s
     }
 
-    /// `diff: ... beyond --tol ...` with the largest relative change.
+    /// `diff: ... beyond --tol ...` with the largest physical move
+    /// ([`crate::diff_moves::headline`]).
     pub fn closing_line(&self) -> String {
-        let compared = |v: Verdict| v != Verdict::Timing;
-        let n_keys = self.keys.iter().filter(|k| compared(k.verdict)).count();
-        let changed = self
+        let n_keys = self
             .keys
             .iter()
-            .map(|k| (k.verdict, k.rel.unwrap_or(f64::INFINITY), &k.key))
-            .chain(self.columns.iter().map(|c| (c.verdict, c.rel, &c.column)))
-            .filter(|(v, _, _)| matches!(v, Verdict::Within | Verdict::Beyond))
-            .max_by(|x, y| x.1.total_cmp(&y.1));
-        let largest = changed.map_or("all compared values bit-identical".to_string(), |c| {
-            format!("largest relative change {:.3e} in {}", c.1, c.2)
-        });
+            .filter(|k| k.verdict != Verdict::Timing)
+            .count();
         format!(
-            "diff: {n_keys} summary keys, {} history columns; {} beyond --tol {}; {largest}",
+            "diff: {n_keys} summary keys, {} history columns; {} beyond --tol {}; {}",
             self.columns.len(),
             self.n_beyond(),
-            self.tol
+            self.tol,
+            crate::diff_moves::headline(&self.moves())
         )
+    }
+
+    /// What differs (within or beyond the tolerance), in the closing summary's order.
+    pub fn moves(&self) -> Vec<Move> {
+        let moved = |v: Verdict| matches!(v, Verdict::Within | Verdict::Beyond);
+        let keys = self.keys.iter().filter(|k| moved(k.verdict)).map(|k| {
+            let rel = k.rel.unwrap_or(f64::INFINITY);
+            Move::new(
+                &k.key,
+                rel,
+                k.verdict.label(),
+                format!("{} -> {}", k.a, k.b),
+            )
+        });
+        let columns = self
+            .columns
+            .iter()
+            .filter(|c| moved(c.verdict))
+            .map(|c| Move::new(&c.column, c.rel, c.verdict.label(), String::new()));
+        crate::diff_moves::sorted(keys.chain(columns).collect())
     }
 }
 
@@ -202,18 +224,6 @@ pub fn diff_runs(a: &Path, b: &Path, tol: f64) -> Result<RunDiff> {
         window,
         spans,
     })
-}
-
-fn read_summary(dir: &Path) -> Result<Value> {
-    let path = dir.join("summary.json");
-    let text = std::fs::read_to_string(&path).with_context(|| {
-        format!(
-            "{}: cannot read (is {} the --out folder of `impact simulate`?)",
-            path.display(),
-            dir.display()
-        )
-    })?;
-    serde_json::from_str(&text).with_context(|| format!("{}: not JSON", path.display()))
 }
 
 /// Flattens a JSON value into (dotted key, leaf value) pairs in document order.
@@ -311,6 +321,8 @@ fn diff_histories(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
 /// the columns, the compared window [start, end, rows] and the two time spans, s.
 pub fn diff_csv(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
     let (ha, hb) = (history_columns(a)?, history_columns(b)?);
+    check_comparable(a, &ha)?;
+    check_comparable(b, &hb)?;
     let (ta, tb) = (&ha[0].1, &hb[0].1);
     let span = |t: &[f64]| (t[0], t[t.len() - 1]);
     let (sa, sb) = (span(ta), span(tb));
@@ -318,6 +330,7 @@ pub fn diff_csv(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
     let grid: Vec<usize> = (0..ta.len())
         .filter(|&i| ta[i] >= t0 && ta[i] <= t1)
         .collect();
+    check_window(a, b, (sa, sb), &grid)?;
     let mut columns = Vec::new();
     for (name, va) in ha.iter().skip(1) {
         let Some((_, vb)) = hb.iter().find(|(n, _)| n == name) else {
@@ -332,6 +345,25 @@ pub fn diff_csv(a: &Path, b: &Path, tol: f64) -> Result<Histories> {
         }
     }
     Ok((columns, (t0, t1, grid.len()), (sa, sb)))
+}
+
+/// Refuses two histories that share no time window (or share one instant only while either
+/// spans more), or whose common window holds no row of A's grid.
+fn check_window(a: &Path, b: &Path, spans: ((f64, f64), (f64, f64)), grid: &[usize]) -> Result<()> {
+    let ((a0, a1), (b0, b1)) = spans;
+    let (t0, t1) = (a0.max(b0), a1.min(b1));
+    let spans_text = format!(
+        "A ({}) covers [{a0:.6e}, {a1:.6e}] s, B ({}) [{b0:.6e}, {b1:.6e}] s",
+        a.display(),
+        b.display()
+    );
+    if t0 > t1 || (t0 == t1 && (a0 < a1 || b0 < b1)) {
+        bail!("no common time window to compare: {spans_text}");
+    }
+    if grid.is_empty() {
+        bail!("no row of A lies in the common time window [{t0:.6e}, {t1:.6e}] s, nothing to compare: {spans_text}");
+    }
+    Ok(())
 }
 
 fn missing(name: &str) -> ColumnDiff {
@@ -383,45 +415,6 @@ fn column_diff(
         rel,
         verdict,
     }
-}
-
-/// (name, values) per column of a history CSV file, `time_s` first.
-pub fn history_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>> {
-    let mut rd = csv::Reader::from_path(path).with_context(|| {
-        format!(
-            "{}: cannot read (is {} the --out folder of `impact simulate`?)",
-            path.display(),
-            path.parent().unwrap_or(Path::new(".")).display()
-        )
-    })?;
-    let names: Vec<String> = rd
-        .headers()
-        .with_context(|| format!("{}: no header", path.display()))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    if names.first().map(String::as_str) != Some("time_s") {
-        bail!("{}: the first column is not time_s", path.display());
-    }
-    let mut cols: Vec<(String, Vec<f64>)> = names.into_iter().map(|n| (n, Vec::new())).collect();
-    for (row, rec) in rd.records().enumerate() {
-        let rec = rec.with_context(|| format!("{}: row {}", path.display(), row + 2))?;
-        for (c, field) in rec.iter().enumerate() {
-            let x: f64 = field.trim().parse().with_context(|| {
-                format!(
-                    "{}: row {}, column {}: {field:?} is not a number",
-                    path.display(),
-                    row + 2,
-                    cols[c].0
-                )
-            })?;
-            cols[c].1.push(x);
-        }
-    }
-    if cols[0].1.is_empty() {
-        bail!("{}: no rows", path.display());
-    }
-    Ok(cols)
 }
 
 #[cfg(test)]

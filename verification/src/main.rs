@@ -44,10 +44,10 @@ enum Command {
         /// Write into a non-empty --out folder that holds no earlier run.
         #[arg(long)]
         force: bool,
-        /// Threads for the element loop (>= 1; default: the number of cores). Results are
-        /// bit-identical for every thread count.
-        #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
-        threads: Option<u16>,
+        /// Threads for the element loop (1 to 4 x the cores, at most 256; default: the number
+        /// of cores). Results are bit-identical for every thread count.
+        #[arg(long, value_parser = parse_threads)]
+        threads: Option<usize>,
     },
     /// Run the verification matrix: prints suite/case/check/status, writes results.json,
     /// junit.xml and matrix.txt to --out. Exit status: 0 when every failing check is a
@@ -387,12 +387,12 @@ fn simulate(
     scene: &std::path::Path,
     out: &std::path::Path,
     options: &RunOptions,
-    threads: Option<u16>,
+    threads: Option<usize>,
     quiet: bool,
 ) -> ExitCode {
     if let Some(n) = threads {
         if let Err(e) = rayon::ThreadPoolBuilder::new()
-            .num_threads(n.into())
+            .num_threads(n)
             .build_global()
         {
             eprintln!("error: --threads {n}: {e}");
@@ -434,6 +434,15 @@ fn simulate(
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
+    }
+}
+
+/// `--threads N`: an integer from 1 to `thread_count::max_threads()`.
+fn parse_threads(text: &str) -> Result<usize, String> {
+    use impact_solver::kernels::thread_count::{check_threads, refusal};
+    match text.trim().parse::<u64>() {
+        Ok(n) => check_threads("--threads", n),
+        Err(_) => Err(refusal("--threads", text)),
     }
 }
 

@@ -119,16 +119,7 @@ pub fn write_report_with(
     out: &Path,
     opts: &ReportOptions,
 ) -> anyhow::Result<Vec<PathBuf>> {
-    use anyhow::Context;
-    let results_path = from.join("results.json");
-    let results: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&results_path).with_context(|| {
-            format!(
-                "{}: run `impact verify --out DIR` first",
-                results_path.display()
-            )
-        })?)
-        .with_context(|| format!("{}", results_path.display()))?;
+    let (results, counts) = crate::report_results::read(&from.join("results.json"))?;
     let env: serde_json::Value = std::fs::read_to_string(from.join("environment.json"))
         .ok()
         .and_then(|t| serde_json::from_str(&t).ok())
@@ -172,7 +163,7 @@ pub fn write_report_with(
         "recon": recon,
         "bench": bench,
         "source": from.display().to_string(),
-        "counts": results["counts"],
+        "counts": counts,
         "cases": cases,
         "paper_table1": table1,
         "paper_table2": table2,

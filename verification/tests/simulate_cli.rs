@@ -2,7 +2,9 @@
 //! refused in well under a second with the estimate in the message; SIGTERM stops a run
 //! cleanly and leaves nothing behind; a run killed with SIGKILL leaves a staging folder that
 //! the next run removes and reports; `/` and foreign non-empty folders are refused as --out;
-//! progress goes to stderr as plain lines when it is not a terminal; --threads 0 is refused.
+//! progress goes to stderr as plain lines when it is not a terminal; --threads 0 is refused;
+//! a time step that makes no run (density 1e-300 or 1e300) is refused at once naming the
+//! input, and a tiny output.every writes every step instead of hanging.
 //! Reference: the behaviour the issue asks for, observed through the real binary.
 
 use std::path::{Path, PathBuf};
@@ -202,4 +204,71 @@ fn root_and_foreign_folders_are_refused_as_out() {
     let (code, err) = run(&["simulate", s, "--out", "o", "--threads", "0"]);
     assert_eq!(code, 2);
     assert!(err.contains("--threads"), "{err}");
+}
+
+/// `impact simulate SCENE --out OUT --quiet`, killed when still running after 60 s (a hang is
+/// a failure here, not a test that never ends): exit status and stderr.
+fn run_or_kill(scene: &Path, out: &Path) -> (i32, String) {
+    let mut child = impact(&[
+        "simulate",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ])
+    .stderr(Stdio::piped())
+    .stdout(Stdio::null())
+    .spawn()
+    .unwrap();
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > Duration::from_secs(60) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{}: still running after 60 s", scene.display());
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let Output { status, stderr, .. } = child.wait_with_output().unwrap();
+    (
+        status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_time_step_that_makes_no_run_is_refused_and_a_tiny_output_interval_does_not_hang() {
+    let d = dir("steps");
+    for (density, says) in [("1e-300", "comes out as 0.000e0 s"), ("1e300", "no step")] {
+        let s = scene(&d, &format!("rho{density}"), |t| {
+            t.replace("density: 7850.0", &format!("density: {density}"))
+        });
+        let (code, err) = run_or_kill(&s, &d.join("out"));
+        assert_eq!(code, 2, "{err}");
+        let named = format!("{}: material.density = {density}: ", s.display());
+        assert!(err.contains(&named) && err.contains(says), "{err}");
+    }
+    // 10^8 history intervals in each step: a row every step, written at once.
+    let s = scene(&d, "every", |t| {
+        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
+            .replace("end: 3.0e-3", "end: 2.0e-4")
+            .replace("every: 1.0e-6", "every: 1.0e-15")
+    });
+    let out = d.join("every-out");
+    let (code, err) = run_or_kill(&s, &out);
+    assert_eq!(code, 0, "{err}");
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let steps: usize = summary
+        .split("\"n_steps\": ")
+        .nth(1)
+        .and_then(|t| t.split(',').next())
+        .and_then(|n| n.trim().parse().ok())
+        .unwrap();
+    let rows = std::fs::read_to_string(out.join("history.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
+    assert_eq!(rows, steps + 1, "one row per step, step 0 included");
+    let _ = std::fs::remove_dir_all(&d);
 }

@@ -3,7 +3,7 @@
 //! hold is refused with the estimate in the message instead of dying in an allocation.
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::{DtChoice, ElementKind, End, Model, Scene};
+use crate::input::scene::{DtChoice, ElementKind, End, Material, Model, Scene};
 
 /// Resident bytes per element: the slope of the peak RSS (`/usr/bin/time -f %M`, one step,
 /// 2 threads) between 400 x 80 and 800 x 160 meshes of the example scenes, measured
@@ -53,10 +53,7 @@ impl Estimate {
         let (nx, ny) = (scene.mesh.nx as f64, scene.mesh.ny as f64);
         let elements = nx * ny;
         let nodes = (nx + 1.0) * (ny + 1.0);
-        let m = &scene.material;
-        let nu = m.poisson_ratio;
-        let c_p =
-            (m.youngs_modulus * (1.0 - nu) / (m.density * (1.0 + nu) * (1.0 - 2.0 * nu))).sqrt();
+        let c_p = p_wave_speed(&scene.material);
         let hx = smallest_element_length(scene);
         let hy = scene.plate.thickness / ny;
         let dt_stable = 1.0 / (c_p * (hx.powi(-2) + hy.powi(-2)).sqrt());
@@ -151,6 +148,12 @@ impl Estimate {
     }
 }
 
+/// The plane-strain P-wave speed `sqrt(E (1 - nu) / (rho (1 + nu) (1 - 2 nu)))`, m/s.
+pub(crate) fn p_wave_speed(m: &Material) -> f64 {
+    let nu = m.poisson_ratio;
+    (m.youngs_modulus * (1.0 - nu) / (m.density * (1.0 + nu) * (1.0 - 2.0 * nu))).sqrt()
+}
+
 /// Smallest element length along x, m (mid-span for graded meshes).
 pub(crate) fn smallest_element_length(scene: &Scene) -> f64 {
     let half_elements = match scene.mesh.model {
@@ -239,9 +242,12 @@ pub fn available_memory() -> Option<f64> {
     Some(kb * 1024.0)
 }
 
-/// Refuses a scene whose memory estimate exceeds `max_memory` or, without it, the memory
-/// the machine has available (every run checks this before allocating: `crate::simulate`).
+/// Refuses a scene whose estimated time step makes no run
+/// ([`crate::input::time_step::check_steps`]) or whose memory estimate exceeds `max_memory`
+/// or, without it, the memory the machine has available (every run checks this before
+/// allocating: `crate::simulate`).
 pub fn check(scene: &Scene, estimate: &Estimate, max_memory: Option<f64>) -> Result<()> {
+    crate::input::time_step::check_steps(scene, estimate.dt)?;
     let (limit, whose) = match max_memory {
         Some(m) => (m, "the limit --max-memory"),
         None => match available_memory() {

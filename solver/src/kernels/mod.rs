@@ -1,11 +1,12 @@
 //! The element kernels and their assembly: the linear-elastic stiffness product
 //! ([`stiffness`]), the batched kernels ([`batch`]) and the elastic screen
 //! ([`elastic_screen`]), and the scatter of element forces into nodal forces ([`assembly`],
-//! [`row_batches`]) on a team of threads ([`workers`]).
+//! [`row_batches`]) on a team of threads ([`workers`]) of a bounded size ([`thread_count`]).
 
 pub mod assembly;
 pub mod batch;
 pub mod elastic_screen;
 pub mod row_batches;
 pub mod stiffness;
+pub mod thread_count;
 pub mod workers;

@@ -9,6 +9,7 @@ use crate::mesh::PlateMesh;
 use crate::physics::element::Formulation;
 use crate::physics::material::{von_mises, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
+use crate::time_loop::schedule::Schedule;
 
 /// A probe: the integration point nearest a named point, in the element containing it.
 #[derive(Debug, Clone)]
@@ -134,40 +135,6 @@ pub struct RunTotals {
     pub stop: StopReason,
     pub initial_energy: Energies,
     pub final_energy: Energies,
-}
-
-/// Steps needed to reach time `t` with step `dt` (times within 1e-9 dt count as reached).
-pub(crate) fn steps_to(t: f64, dt: f64) -> u64 {
-    (t / dt - 1e-9).ceil().max(0.0) as u64
-}
-
-/// A schedule of output steps every `every` s (every step when `None`).
-pub(crate) struct Schedule {
-    every: Option<f64>,
-    next: u64,
-    k: u64,
-}
-
-impl Schedule {
-    pub(crate) fn new(every: Option<f64>) -> Schedule {
-        Schedule {
-            every,
-            next: 0,
-            k: 0,
-        }
-    }
-    /// Whether step `n` is due; advances past it.
-    pub(crate) fn due(&mut self, n: u64, dt: f64) -> bool {
-        let Some(every) = self.every else { return true };
-        if n < self.next {
-            return false;
-        }
-        while self.next <= n {
-            self.k += 1;
-            self.next = steps_to(self.k as f64 * every, dt);
-        }
-        true
-    }
 }
 
 /// The state of the run at `t_n` that the recorder samples.

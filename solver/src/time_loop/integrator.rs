@@ -20,8 +20,9 @@ use crate::physics::material::Elastic;
 use crate::physics::material::{von_mises, ConstitutiveModel, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::history::{
-    locate_probes, steps_to, HistorySink, Probe, Recorder, RunTotals, Sample, Schedule, StopReason,
+    locate_probes, HistorySink, Probe, Recorder, RunTotals, Sample, StopReason,
 };
+use crate::time_loop::schedule::{steps_to, Schedule};
 use crate::time_loop::stable_step::{self, Estimate, Spring};
 use crate::time_loop::surface_coupling::SurfaceImpact;
 
@@ -230,6 +231,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         .as_ref()
         .map_or(dt_plate, |c| c.stable_step(dt_plate, &model.mass));
     let dt = chosen_step(scene, dt_critical)?;
+    crate::input::time_step::check_steps(scene, dt)?;
     let probes = locate_probes(scene, mesh, &model.formulation)?;
     let clock = Clock::new(scene, dt);
     let mut watch = Watch::new(scene, observer, &clock);
