@@ -143,3 +143,24 @@ def test_overrides_equal_the_edited_scene(small_scene):
     assert run.summary["n_elements"] == 24 * 4
     with pytest.raises(impact.SceneError, match="material.density"):
         impact.simulate(small_scene, overrides={"material.density": -1.0})
+
+
+def test_surface_contact_runs_from_a_dict_scene(small_scene, cli, tmp_path):
+    """The surface coupling from Python (a dict scene): the same bits as the CLI, its history
+    columns and summary keys, and the nodal coupling's keys refused with it."""
+    scene = yaml.safe_load(small_scene.read_text())
+    impactor = scene["load"]["impactor"]
+    for key in ("youngs_modulus", "poisson_ratio", "contact_law", "indentation_datum", "force_node"):
+        impactor.pop(key, None)
+    impactor["contact"] = "surface"
+    run = impact.simulate(scene)
+    assert run.summary["contact_law"] == "surface(kinematic)"
+    assert run.summary["max_nodes_in_contact"] >= 1
+    assert {"contact_half_width_m", "nodes_in_contact"} <= set(run.history)
+    path = tmp_path / "surface.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    subprocess.run([cli, "simulate", path, "--out", tmp_path / "cli", "--quiet"], check=True)
+    assert without_timing(run.summary) == without_timing(read_summary(tmp_path / "cli" / "summary.json"))
+    impactor["contact_law"] = {"paper": {"length_unit": 1.0}}
+    with pytest.raises(impact.SceneError, match="load.impactor.contact_law"):
+        impact.simulate(scene)
