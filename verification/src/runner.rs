@@ -584,6 +584,17 @@ fn case_result(
         }
         checks.push(r);
     }
+    // The series values a `plots:` entry draws (a metric of several series).
+    for p in &case.file.plots {
+        if let Some(metric) = &p.metric {
+            for name in &p.series {
+                series_metrics
+                    .entry(name.clone())
+                    .or_default()
+                    .insert(metric.clone());
+            }
+        }
+    }
     let discrimination = if case_skip.is_none() && setup_error.is_none() {
         crate::discriminate::rows(case, &evaluated, &ctx)
     } else {
