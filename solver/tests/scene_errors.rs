@@ -463,3 +463,170 @@ fn a_time_step_that_makes_no_run_is_refused_before_the_run_naming_its_input() {
         assert_eq!(run.err().map(|e| e.to_string()), Some(err));
     }
 }
+
+/// The example with `plate` as a block mapping (the example writes it as a flow mapping).
+fn block_plate(s: &str) -> String {
+    s.replace(
+        "plate: {length: 0.200, width: 0.200, thickness: 0.020}",
+        "plate:\n  length: 0.200\n  width: 0.200\n  thickness: 0.020",
+    )
+}
+
+#[test]
+fn a_missing_field_is_named_under_its_own_mapping_at_that_mapping() {
+    let e = error_for(|s| block_plate(s).replace("\n  thickness: 0.020", ""));
+    assert_mentions(&e, &["bad.yaml:3:1: plate: missing field `thickness`"]);
+    let e = error_for(|s| s.replace("  density: 7850.0\n", ""));
+    assert_mentions(&e, &["bad.yaml:4:1: material: missing field `density`"]);
+    let e = error_for(|s| s.replace("    mass: 18.0 ", "#"));
+    assert_mentions(&e, &["bad.yaml:10:3: load.impactor: missing field `mass`"]);
+    let e = error_for(|s| s.replace("  dt: {cfl: 0.8}", "#"));
+    assert_mentions(&e, &["bad.yaml:19:1: time: missing field `dt`"]);
+    // A flow mapping: named as before, on its own line.
+    let e = error_for(|s| s.replace(", thickness: 0.020", ""));
+    assert_mentions(&e, &["bad.yaml:3:", "plate: missing field `thickness`"]);
+    let e = error_for(|s| s.replace("{paper: {length_unit: 1.0}}", "{paper: {}}"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:16:",
+            "load.impactor.contact_law.paper: missing field `length_unit`",
+        ],
+    );
+}
+
+#[test]
+fn a_missing_section_is_named_at_the_start_of_the_scene() {
+    let e = error_for(|s| s.replace("plate: {length: 0.200, width: 0.200, thickness: 0.020}", ""));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:1:1: ",
+            "no `plate` section",
+            "material, mesh, load and time",
+        ],
+    );
+    assert!(!e.contains("output"), "{e}");
+}
+
+#[test]
+fn a_bad_end_time_says_what_end_takes() {
+    for bad in ["soon", "{after: 1}"] {
+        let e = error_for(|s| s.replace("end: 3.0e-3 ", &format!("end: {bad} ")));
+        assert_mentions(
+            &e,
+            &[
+                "bad.yaml:20:",
+                "time.end: expected a number of seconds or {after_contact: seconds}",
+            ],
+        );
+        assert!(!e.contains("untagged"), "{e}");
+    }
+}
+
+#[test]
+fn a_kind_written_wrongly_is_told_the_kinds() {
+    let e = error_for(|s| s.replace("{paper: {length_unit: 1.0}}", "{[a]: 1}"));
+    assert_mentions(
+        &e,
+        &[
+            "load.impactor.contact_law: expected one kind written as a mapping",
+            "{paper: {length_unit: m}}",
+            "{johnson: {datum_depth: m}}",
+        ],
+    );
+    assert!(!e.contains("externally tagged"), "{e}");
+    let e = error_for(|s| s.replace("load:\n  impactor:", "load: [1]\nxload:\n  impactor:"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:9:",
+            "load: expected one kind",
+            "impactor",
+            "pulse",
+            "traction",
+        ],
+    );
+    assert!(!e.contains("externally tagged"), "{e}");
+}
+
+#[test]
+fn a_second_document_is_refused_at_its_separator() {
+    let e = error_for(|s| format!("{s}---\n{s}"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:26:1: ",
+            "a scene is one YAML document; found a second one (---) at line 26",
+        ],
+    );
+    assert!(!e.contains("from_str_multiple"), "{e}");
+}
+
+#[test]
+fn an_infinite_value_must_be_finite() {
+    let e = error_for(|s| s.replace("end: 3.0e-3 ", "end: .inf "));
+    assert_mentions(&e, &["bad.yaml:20:8", "time.end: must be a finite number"]);
+    assert!(!e.contains("policy"), "{e}");
+}
+
+#[test]
+fn an_unclosed_quote_says_where_the_string_starts() {
+    let e = error_for(|s| format!("title: \"abc\n{s}"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:1:8: ",
+            "title: the quoted string that starts at line 1 column 8 is not closed",
+        ],
+    );
+    assert!(!e.contains("integer"), "{e}");
+    let e = error_for(|s| s.replace("element: q4-sri", "element: 'q4-sri"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:8:",
+            "mesh.element: the quoted string that starts at line 8 column",
+            "not closed",
+        ],
+    );
+}
+
+#[test]
+fn a_quoted_number_is_refused_naming_field_value_and_type() {
+    let e = error_for(|s| s.replace("density: 7850.0", "density: \"7850\""));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:5:12",
+            "material.density = \"7850\"",
+            "quoted",
+            "a number",
+        ],
+    );
+    let e = error_for(|s| s.replace("nx: 80", "nx: '80'"));
+    assert_mentions(&e, &["bad.yaml:8:", "mesh.nx = '80'", "an integer"]);
+    let e = error_for(|s| s.replace("{cfl: 0.8}", "{cfl: \"0.8\"}"));
+    assert_mentions(&e, &["bad.yaml:21:", "time.dt.cfl = \"0.8\"", "a number"]);
+    // A quoted title is a title.
+    let text = format!("title: \"7850\"\n{EXAMPLE}");
+    assert!(Scene::from_yaml(&text, Path::new("t.yaml")).is_ok());
+}
+
+#[test]
+fn a_string_boolean_is_refused_naming_field_value_and_type() {
+    let e = error_for(|s| {
+        s.replace(
+            "  dt: {cfl: 0.8}",
+            "  dt: {cfl: 0.8}\n  allow_unstable_dt: \"yes\"",
+        )
+    });
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:22:22",
+            "time.allow_unstable_dt = \"yes\"",
+            "`true` or `false`",
+        ],
+    );
+}

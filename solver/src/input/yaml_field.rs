@@ -129,6 +129,14 @@ pub fn explain(message: &str, field: &str) -> String {
         "expected string scalar" => {
             "expected a single value (a number or a word), not a list or a mapping".to_string()
         }
+        m if m.starts_with("data did not match any variant of untagged enum EndFile") => {
+            "expected a number of seconds or {after_contact: seconds}".to_string()
+        }
+        m if m.starts_with("non-finite float") => "must be a finite number".to_string(),
+        "expected string key for externally tagged enum"
+        | "externally tagged enum expected scalar or mapping" => {
+            format!("expected one kind written as a mapping: {}", kinds(leaf))
+        }
         "expected end of mapping after enum variant value" => format!(
             "{} takes exactly one kind, and a second one (`{leaf}`) is given here; keep one",
             if parent.is_empty() { "this" } else { parent }
@@ -139,6 +147,225 @@ pub fn explain(message: &str, field: &str) -> String {
         words
     } else {
         format!("{field}: {words}")
+    }
+}
+
+/// The parser's error at 1-based `line`, `column` of `text` as the user's message, with the
+/// place it belongs to: an unclosed quote where the string starts, a second document at its
+/// `---`, a missing field at the mapping that lacks it; else [`explain`] at the parser's place.
+pub fn describe(text: &str, message: &str, line: u64, column: u64) -> (u64, u64, String) {
+    if let Some((l, c)) = unclosed_quote(text) {
+        let field = field_at(text, l, c);
+        let words = format!(
+            "the quoted string that starts at line {l} column {c} is not closed (its closing quote is missing on that line)"
+        );
+        return (l, c, with_field(&field, words));
+    }
+    if message.starts_with("multiple YAML documents") {
+        let at = separator_line(text, line);
+        return (
+            at,
+            1,
+            format!("a scene is one YAML document; found a second one (---) at line {at}"),
+        );
+    }
+    if let Some(name) = missing_field(message) {
+        return missing(text, name, line, column);
+    }
+    (
+        line,
+        column,
+        explain(message, &field_at(text, line, column)),
+    )
+}
+
+fn with_field(field: &str, words: String) -> String {
+    if field.is_empty() {
+        words
+    } else {
+        format!("{field}: {words}")
+    }
+}
+
+/// `missing field `x`` -> `x`.
+fn missing_field(message: &str) -> Option<&str> {
+    message.strip_prefix("missing field `")?.strip_suffix('`')
+}
+
+/// The parser reports a missing field at the last key of the mapping that lacks it: name that
+/// mapping, at its own key's line (a block mapping) or where the parser points (a flow one).
+fn missing(text: &str, name: &str, line: u64, column: u64) -> (u64, u64, String) {
+    let (parent, at) = match block_key_at(text, line, column) {
+        Some(indent) => {
+            let mut path: Vec<String> = field_at(text, line, column)
+                .split('.')
+                .map(str::to_string)
+                .collect();
+            path.pop();
+            (path.join("."), parent_key_line(text, line, indent))
+        }
+        None => (field_at(text, line, column), Some((line, column))),
+    };
+    if parent.is_empty() {
+        return (
+            1,
+            1,
+            format!("the scene has no `{name}` section (missing field `{name}`); every scene needs plate, material, mesh, load and time"),
+        );
+    }
+    let (l, c) = at.unwrap_or((1, 1));
+    (l, c, format!("{parent}: missing field `{name}`"))
+}
+
+/// The indent of the block key that starts at `line`, `column`, if one does.
+fn block_key_at(text: &str, line: u64, column: u64) -> Option<usize> {
+    let raw = text.lines().nth(line.checked_sub(1)? as usize)?;
+    let content = without_comment(raw);
+    let indent = content.len() - content.trim_start().len();
+    split_key(content.trim_start())?;
+    ((column.max(1) - 1) as usize <= indent).then_some(indent)
+}
+
+/// The line and column of the nearest key above `line` indented less than `indent`; `None`
+/// at the top level.
+fn parent_key_line(text: &str, line: u64, indent: usize) -> Option<(u64, u64)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let upto = (line.saturating_sub(1) as usize).min(lines.len());
+    lines[..upto].iter().enumerate().rev().find_map(|(i, raw)| {
+        let content = without_comment(raw);
+        let own = content.len() - content.trim_start().len();
+        let is_key = split_key(content.trim_start()).is_some();
+        (is_key && own < indent).then_some((i as u64 + 1, own as u64 + 1))
+    })
+}
+
+/// The line of the document separator `---` at or before `line` (else `line`).
+fn separator_line(text: &str, line: u64) -> u64 {
+    text.lines()
+        .enumerate()
+        .take(line as usize)
+        .skip(1)
+        .filter(|(_, l)| l.starts_with("---"))
+        .map(|(i, _)| i as u64 + 1)
+        .last()
+        .unwrap_or(line)
+}
+
+/// Where a quote that opens a value starts (1-based line, column) when it is not closed on
+/// its line: a scene has no multi-line strings, so this is the cause of the parser's error.
+pub fn unclosed_quote(text: &str) -> Option<(u64, u64)> {
+    text.lines().enumerate().find_map(|(i, raw)| {
+        let open = quoted_scalars(raw).find_map(|q| q.end.is_none().then_some(q.start))?;
+        Some((i as u64 + 1, open as u64 + 1))
+    })
+}
+
+/// A quoted scalar in a line: the byte of its opening quote, of its closing one if any.
+struct Quoted {
+    start: usize,
+    end: Option<usize>,
+}
+
+/// The quoted scalars of a line that open a value or key (after `:`, `{`, `[`, `,`, `-` or at
+/// the line's start); stops at a comment.
+fn quoted_scalars(line: &str) -> impl Iterator<Item = Quoted> + '_ {
+    let mut at = 0;
+    std::iter::from_fn(move || {
+        while at < line.len() {
+            let c = line[at..].chars().next()?;
+            let before = line[..at].trim_end();
+            if c == '#' && (at == 0 || line[..at].ends_with(' ')) {
+                return None;
+            }
+            let opens = matches!(c, '"' | '\'')
+                && (before.is_empty() || before.ends_with([':', '{', '[', ',', '-']));
+            if !opens {
+                at += c.len_utf8();
+                continue;
+            }
+            let start = at;
+            let end = closing_quote(line, start, c);
+            at = end.map_or(line.len(), |e| e + 1);
+            return Some(Quoted { start, end });
+        }
+        None
+    })
+}
+
+/// The byte of the quote that closes the one at `start` (`\"` escapes in double quotes, `''`
+/// in single quotes).
+fn closing_quote(line: &str, start: usize, quote: char) -> Option<usize> {
+    let bytes = line.as_bytes();
+    let mut i = start + 1;
+    while i < bytes.len() {
+        let b = bytes[i];
+        if quote == '"' && b == b'\\' {
+            i += 2;
+            continue;
+        }
+        if b == quote as u8 {
+            if quote == '\'' && bytes.get(i + 1) == Some(&b'\'') {
+                i += 2;
+                continue;
+            }
+            return Some(i);
+        }
+        i += 1;
+    }
+    None
+}
+
+/// A quoted value that reads as a number or a boolean, for a field that takes one: (1-based
+/// line, column, field, the value as written, the type the field takes).
+///
+/// Refused rather than read: the parser would take `density: "7850"` as 7850 and
+/// `allow_unstable_dt: "yes"` as true without a word, but a quoted number in an SI scene is
+/// usually a unit slip (`"7.85 g/cm3"` edited down) or a template that substituted text, and a
+/// quoted word is a string. `title` is text and may hold anything.
+pub fn quoted_non_string(text: &str) -> Option<(u64, u64, String, String, &'static str)> {
+    text.lines().enumerate().find_map(|(i, raw)| {
+        quoted_scalars(raw).find_map(|q| {
+            let end = q.end?;
+            let inner = raw[q.start + 1..end].trim();
+            let is_key = raw[end + 1..].trim_start().starts_with(':');
+            let (line, column) = (i as u64 + 1, q.start as u64 + 1);
+            let field = field_at(text, line, column);
+            let kind = expected_kind(&field, inner)?;
+            (!is_key && field != "title").then(|| {
+                let written = raw[q.start..=end].to_string();
+                (line, column, field, written, kind)
+            })
+        })
+    })
+}
+
+/// What a field takes when `inner` (a quoted value) reads as a number or a boolean.
+fn expected_kind(field: &str, inner: &str) -> Option<&'static str> {
+    let leaf = field.rsplit('.').next().unwrap_or(field);
+    let boolean = matches!(
+        inner.to_ascii_lowercase().as_str(),
+        "true" | "false" | "yes" | "no" | "on" | "off" | "y" | "n"
+    );
+    let number = inner.parse::<f64>().is_ok()
+        || matches!(
+            inner.to_ascii_lowercase().trim_start_matches(['+', '-']),
+            ".inf" | ".nan"
+        );
+    match leaf {
+        "allow_unstable_dt" if boolean || number => Some("`true` or `false`"),
+        "nx" | "ny" if number => Some("an integer"),
+        _ if number => Some("a number"),
+        _ => None,
+    }
+}
+
+/// The one-kind mappings of the scene, in words, by the field's last key.
+fn kinds(leaf: &str) -> &'static str {
+    match leaf {
+        "load" => "`impactor: {...}`, `pulse: {...}` or `traction: {...}`",
+        "contact_law" => "`{paper: {length_unit: m}}` or `{johnson: {datum_depth: m}}`",
+        "hardening" => "`{linear: Pa}` or `{table: [[eqps, Pa], ...]}`",
+        _ => "one key naming the kind, with its settings",
     }
 }
 
