@@ -623,7 +623,6 @@ impl Scene {
     /// Parses and validates YAML text; `source` names it in messages.
     pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
         let file: SceneFile = parse(text, source)?;
-        refuse_quoted_non_strings(text, source)?;
         Validator { source }.scene(file)
     }
 
@@ -743,24 +742,6 @@ fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T>
             message,
         }
     })
-}
-
-/// A quoted number or boolean is refused (see [`crate::input::yaml_field::quoted_non_string`]
-/// for why): a quoted number in an SI scene is usually a unit slip or a template error.
-fn refuse_quoted_non_strings(text: &str, source: &Path) -> Result<()> {
-    match crate::input::yaml_field::quoted_non_string(text) {
-        None => Ok(()),
-        Some((line, column, field, written, kind)) => Err(Error::invalid(
-            SourceLocation {
-                file: source.to_path_buf(),
-                line,
-                column,
-            },
-            field,
-            written,
-            format!("is a quoted string; expected {kind}, written without quotes"),
-        )),
-    }
 }
 
 /// A message about the merged tree, whose lines and columns are not the file's.

@@ -315,50 +315,6 @@ fn closing_quote(line: &str, start: usize, quote: char) -> Option<usize> {
     None
 }
 
-/// A quoted value that reads as a number or a boolean, for a field that takes one: (1-based
-/// line, column, field, the value as written, the type the field takes).
-///
-/// Refused rather than read: the parser would take `density: "7850"` as 7850 and
-/// `allow_unstable_dt: "yes"` as true without a word, but a quoted number in an SI scene is
-/// usually a unit slip (`"7.85 g/cm3"` edited down) or a template that substituted text, and a
-/// quoted word is a string. `title` is text and may hold anything.
-pub fn quoted_non_string(text: &str) -> Option<(u64, u64, String, String, &'static str)> {
-    text.lines().enumerate().find_map(|(i, raw)| {
-        quoted_scalars(raw).find_map(|q| {
-            let end = q.end?;
-            let inner = raw[q.start + 1..end].trim();
-            let is_key = raw[end + 1..].trim_start().starts_with(':');
-            let (line, column) = (i as u64 + 1, q.start as u64 + 1);
-            let field = field_at(text, line, column);
-            let kind = expected_kind(&field, inner)?;
-            (!is_key && field != "title").then(|| {
-                let written = raw[q.start..=end].to_string();
-                (line, column, field, written, kind)
-            })
-        })
-    })
-}
-
-/// What a field takes when `inner` (a quoted value) reads as a number or a boolean.
-fn expected_kind(field: &str, inner: &str) -> Option<&'static str> {
-    let leaf = field.rsplit('.').next().unwrap_or(field);
-    let boolean = matches!(
-        inner.to_ascii_lowercase().as_str(),
-        "true" | "false" | "yes" | "no" | "on" | "off" | "y" | "n"
-    );
-    let number = inner.parse::<f64>().is_ok()
-        || matches!(
-            inner.to_ascii_lowercase().trim_start_matches(['+', '-']),
-            ".inf" | ".nan"
-        );
-    match leaf {
-        "allow_unstable_dt" if boolean || number => Some("`true` or `false`"),
-        "nx" | "ny" if number => Some("an integer"),
-        _ if number => Some("a number"),
-        _ => None,
-    }
-}
-
 /// The one-kind mappings of the scene, in words, by the field's last key.
 fn kinds(leaf: &str) -> &'static str {
     match leaf {

@@ -245,11 +245,11 @@ pub fn plastic_bar_wave(p: &Params) -> Result<RunData, String> {
         Some(v) => v.as_str().ok_or("param element: not a string")?,
     };
     let text = scene(&bar, model, ny, element);
-    let scene =
-        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin plastic-bar-wave)"))
-            .map_err(|e| e.to_string())?;
-    let o =
-        impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
+    let o = super::run_scene_text(
+        &text,
+        "(builtin plastic-bar-wave)",
+        &mut impact_solver::Quiet,
+    )?;
     let m = measure(&o.history, &bar, ny)?;
     let mut metrics = m;
     metrics.insert(

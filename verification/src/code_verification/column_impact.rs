@@ -154,11 +154,7 @@ pub fn column_impact(p: &Params) -> Result<RunData, String> {
     let ny = param(p, "ny", 256.0)? as usize;
     let courant = param(p, "courant", 1.0)?;
     let text = scene(&col, model_modulus, ny, courant);
-    let scene =
-        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin column-impact)"))
-            .map_err(|e| e.to_string())?;
-    let o =
-        impact_solver::simulate(&scene, &mut impact_solver::Quiet).map_err(|e| e.to_string())?;
+    let o = super::run_scene_text(&text, "(builtin column-impact)", &mut impact_solver::Quiet)?;
     let column = |name: &str| {
         o.history
             .column(name)

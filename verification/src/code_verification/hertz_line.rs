@@ -134,11 +134,8 @@ pub fn hertz_line(p: &Params) -> Result<RunData, String> {
     let n = param(p, "n", 320.0)? as usize;
     let size = param(p, "size", 0.04)?;
     let text = scene(n, size, model_modulus, nu);
-    let scene =
-        impact_solver::Scene::from_yaml(&text, std::path::Path::new("(builtin hertz-line)"))
-            .map_err(|e| e.to_string())?;
     let mut peak = PeakFrame::default();
-    let o = impact_solver::simulate(&scene, &mut peak).map_err(|e| e.to_string())?;
+    let o = super::run_scene_text(&text, "(builtin hertz-line)", &mut peak)?;
     let frame = peak
         .frame
         .ok_or("hertz-line: no field frame with contact")?;
