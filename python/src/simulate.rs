@@ -41,15 +41,16 @@ pub fn simulate<'py>(
         None => Overrides::new(),
     };
     let threads = threads.map(|t| thread_count(&t)).transpose()?;
+    let mut signals = PythonSignals::default();
     let outcome = py.detach(|| {
         let scene = Scene::from_yaml_with(text, &overrides, &source)?;
-        let run = || run(&scene, out.as_deref());
+        let mut run = || run(&scene, out.as_deref(), &mut signals);
         match threads {
             Some(n) => impact_solver::workers::with_threads(n, run),
             None => run(),
         }
     });
-    let outcome = outcome.map_err(to_py)?;
+    let outcome = outcome.map_err(|e| signals.raised_take().unwrap_or_else(|| to_py(e)))?;
     let summary = serde_json::to_string_pretty(&outcome.summary)
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
     let history = &outcome.history;
@@ -80,7 +81,40 @@ fn thread_count(threads: &Bound<'_, PyAny>) -> PyResult<usize> {
     checked.map_err(PyValueError::new_err)
 }
 
-fn run(scene: &Scene, out: Option<&Path>) -> impact_solver::Result<Outcome> {
+/// Ctrl-C from Python: the time loop polls this every `POLL_EVERY` steps; it takes the GIL
+/// for the check (the run holds none) and lets Python run its signal handlers
+/// (`PyErr_CheckSignals`: SIGINT raises KeyboardInterrupt). A raised exception stops the run
+/// and is kept, to be raised in place of the solver's own "interrupted" error.
+#[derive(Default)]
+struct PythonSignals {
+    raised: std::sync::Mutex<Option<PyErr>>,
+}
+
+impl PythonSignals {
+    fn raised_take(&self) -> Option<PyErr> {
+        self.raised.lock().ok()?.take()
+    }
+}
+
+impl impact_solver::Observer for PythonSignals {
+    fn stop_requested(&self) -> bool {
+        Python::attach(|py| match py.check_signals() {
+            Ok(()) => false,
+            Err(e) => {
+                if let Ok(mut slot) = self.raised.lock() {
+                    *slot = Some(e);
+                }
+                true
+            }
+        })
+    }
+}
+
+fn run(
+    scene: &Scene,
+    out: Option<&Path>,
+    signals: &mut PythonSignals,
+) -> impact_solver::Result<Outcome> {
     match out {
         Some(dir) => {
             // Run.history is returned: hold it in memory as well as writing history.csv.
@@ -90,6 +124,6 @@ fn run(scene: &Scene, out: Option<&Path>) -> impact_solver::Result<Outcome> {
             };
             output::simulate_scene_to_dir_with(scene, dir, &options, &mut |_| {})
         }
-        None => impact_solver::simulate(scene, &mut impact_solver::Quiet),
+        None => impact_solver::simulate(scene, signals),
     }
 }
