@@ -1,6 +1,7 @@
 //! `simulate`: one scene, from its YAML text, through the solver's own run and output code.
 
 use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -41,10 +42,10 @@ pub fn simulate<'py>(
         None => Overrides::new(),
     };
     let threads = threads.map(|t| thread_count(&t)).transpose()?;
-    let mut signals = PythonSignals::default();
+    let signals = Arc::new(PythonSignals::default());
     let outcome = py.detach(|| {
         let scene = Scene::from_yaml_with(text, &overrides, &source)?;
-        let mut run = || run(&scene, out.as_deref(), &mut signals);
+        let run = || run(&scene, out.as_deref(), &signals);
         match threads {
             Some(n) => impact_solver::workers::with_threads(n, run),
             None => run(),
@@ -81,23 +82,18 @@ fn thread_count(threads: &Bound<'_, PyAny>) -> PyResult<usize> {
     checked.map_err(PyValueError::new_err)
 }
 
-/// Ctrl-C from Python: the time loop polls this every `POLL_EVERY` steps; it takes the GIL
-/// for the check (the run holds none) and lets Python run its signal handlers
+/// Ctrl-C from Python: the time loop polls [`PythonSignals::check`] every `POLL_EVERY` steps;
+/// it takes the GIL for the check (the run holds none) and lets Python run its signal handlers
 /// (`PyErr_CheckSignals`: SIGINT raises KeyboardInterrupt). A raised exception stops the run
 /// and is kept, to be raised in place of the solver's own "interrupted" error.
 #[derive(Default)]
 struct PythonSignals {
-    raised: std::sync::Mutex<Option<PyErr>>,
+    raised: Mutex<Option<PyErr>>,
 }
 
 impl PythonSignals {
-    fn raised_take(&self) -> Option<PyErr> {
-        self.raised.lock().ok()?.take()
-    }
-}
-
-impl impact_solver::Observer for PythonSignals {
-    fn stop_requested(&self) -> bool {
+    /// Whether a Python signal handler raised (the run must stop).
+    fn check(&self) -> bool {
         Python::attach(|py| match py.check_signals() {
             Ok(()) => false,
             Err(e) => {
@@ -108,22 +104,34 @@ impl impact_solver::Observer for PythonSignals {
             }
         })
     }
+
+    fn raised_take(&self) -> Option<PyErr> {
+        self.raised.lock().ok()?.take()
+    }
+}
+
+impl impact_solver::Observer for &PythonSignals {
+    fn stop_requested(&self) -> bool {
+        self.check()
+    }
 }
 
 fn run(
     scene: &Scene,
     out: Option<&Path>,
-    signals: &mut PythonSignals,
+    signals: &Arc<PythonSignals>,
 ) -> impact_solver::Result<Outcome> {
     match out {
         Some(dir) => {
             // Run.history is returned: hold it in memory as well as writing history.csv.
+            let hook = Arc::clone(signals);
             let options = output::RunOptions {
                 keep_history: true,
+                stop: Some(output::StopHook(Arc::new(move || hook.check()))),
                 ..Default::default()
             };
             output::simulate_scene_to_dir_with(scene, dir, &options, &mut |_| {})
         }
-        None => impact_solver::simulate(scene, signals),
+        None => impact_solver::simulate(scene, &mut &**signals),
     }
 }

@@ -166,23 +166,27 @@ def test_surface_contact_runs_from_a_dict_scene(small_scene, cli, tmp_path):
         impact.simulate(scene)
 
 
-def test_ctrl_c_stops_a_run_within_a_second(small_scene):
+@pytest.mark.parametrize("to_folder", [False, True])
+def test_ctrl_c_stops_a_run_within_a_second(small_scene, tmp_path, to_folder):
     """A real SIGINT while a long run holds no GIL: KeyboardInterrupt within about a second
-    (the loop polls Python's signal handlers every 256 steps), not at the run's end."""
+    (the loop polls Python's signal handlers every 256 steps), not at the run's end; with
+    out=, nothing is left in the folder."""
     import os
     import signal
 
     scene = yaml.safe_load(small_scene.read_text())
     scene["time"]["end"] = 10.0      # ~1e8 steps: minutes if the interrupt were ignored
     scene["output"] = {"every": 1.0e-3}
+    out = tmp_path / "run" if to_folder else None
     timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
     started = time.monotonic()
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            impact.simulate(scene)
+            impact.simulate(scene, out=out)
     finally:
         timer.cancel()
     assert time.monotonic() - started < 3.0
+    assert list(tmp_path.iterdir()) == []
     # The module still works after the interrupt.
     assert impact.simulate(small_scene).summary["n_steps"] > 0

@@ -156,6 +156,7 @@ fn main() -> ExitCode {
                 force,
                 // The history streams to history.csv: memory does not grow with time.end.
                 keep_history: false,
+                stop: None,
             };
             simulate(&scene, &out, &options, threads, quiet)
         }

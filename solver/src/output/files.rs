@@ -135,6 +135,7 @@ struct FileObserver<'a> {
     fields_dir: Option<PathBuf>,
     frames: Vec<(f64, String)>,
     progress: Progress,
+    stop: Option<&'a StopHook>,
 }
 
 impl Observer for FileObserver<'_> {
@@ -142,7 +143,7 @@ impl Observer for FileObserver<'_> {
         self.progress.at(time, end);
     }
     fn stop_requested(&self) -> bool {
-        crate::time_loop::interrupt::stop_requested()
+        crate::time_loop::interrupt::stop_requested() || self.stop.is_some_and(|hook| (hook.0)())
     }
     fn wants_fields(&self) -> bool {
         self.fields_dir.is_some()
@@ -170,6 +171,18 @@ pub struct RunOptions {
     /// Without it the history is streamed to `history.csv` as the run goes (memory does not
     /// grow with `time.end`) and `Outcome::history` holds the column names only.
     pub keep_history: bool,
+    /// Asked at every stop poll beside the signal flag (e.g. Python's signal handlers).
+    pub stop: Option<StopHook>,
+}
+
+/// A caller's own stop request, polled with the signal flag: `true` stops the run.
+#[derive(Clone)]
+pub struct StopHook(pub std::sync::Arc<dyn Fn() -> bool + Send + Sync>);
+
+impl std::fmt::Debug for StopHook {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("StopHook")
+    }
 }
 
 impl Default for RunOptions {
@@ -179,6 +192,7 @@ impl Default for RunOptions {
             max_memory: None,
             force: false,
             keep_history: false,
+            stop: None,
         }
     }
 }
@@ -289,6 +303,7 @@ fn run_into(
         fields_dir,
         frames: Vec::new(),
         progress,
+        stop: options.stop.as_ref(),
     };
     let history_path = staging.join("history.csv");
     let outcome = if options.keep_history {
