@@ -1064,9 +1064,16 @@ impl Validator<'_> {
                         &i.youngs_modulus,
                         i,
                         "youngs_modulus",
+                        "Pa",
                         POSITIVE,
                     )?,
-                    poisson_ratio: self.required(&i.poisson_ratio, i, "poisson_ratio", POISSON)?,
+                    poisson_ratio: self.required(
+                        &i.poisson_ratio,
+                        i,
+                        "poisson_ratio",
+                        "-",
+                        POISSON,
+                    )?,
                     contact_law: self.contact_law(i, plate)?,
                     indentation_datum: i
                         .indentation_datum
@@ -1115,12 +1122,14 @@ impl Validator<'_> {
         }))
     }
 
-    /// A key the nodal coupling needs: missing is an error at the impactor's `mass`.
+    /// A key the nodal coupling needs (`unit` for the message): missing is an error at the
+    /// impactor's `mass`.
     fn required(
         &self,
         value: &Option<Num>,
         i: &ImpactorFile,
         key: &str,
+        unit: &str,
         rule: Rule,
     ) -> Result<f64> {
         let field = format!("load.impactor.{key}");
@@ -1130,7 +1139,7 @@ impl Validator<'_> {
                 &i.mass,
                 &field,
                 "missing",
-                format!("the nodal contact coupling (the default `contact: nodal`) needs the nose's {key} ({}); or use `contact: surface`, whose nose is rigid", if key == "youngs_modulus" { "Pa" } else { "-" }),
+                format!("the nodal contact coupling (the default `contact: nodal`) needs the nose's {key} ({unit}); or use `contact: surface`, whose nose is rigid"),
             ),
         }
     }

@@ -55,7 +55,9 @@ pub struct NoseForces {
 impl NoseSurface {
     /// The nose over the top-surface nodes within `1.1 R` of its axis (a node farther away
     /// would have to move sideways by `0.1 R` to touch: small strain). `lambda(e)` is element
-    /// `e`'s largest eigenvalue, (rad/s)^2; `mass` the nodal masses, kg.
+    /// `e`'s largest eigenvalue, (rad/s)^2, asked once per top-row element a candidate holds
+    /// and only when `penalty_scale > 0` (the kinematic enforcement has no springs: 0); `mass`
+    /// the nodal masses, kg.
     pub fn new(
         mesh: &PlateMesh,
         radius: f64,
@@ -66,28 +68,30 @@ impl NoseSurface {
         let center_x = 0.5 * mesh.length;
         let top_row = (mesh.ny - 1) * mesh.nx;
         let first = mesh.ny * (mesh.nx + 1);
-        let nodes = (0..=mesh.nx)
-            .filter_map(|i| {
-                let node = first + i;
-                let [x, y] = mesh.mesh.coords[node];
-                if (x - center_x).abs() > 1.1 * radius {
-                    return None;
+        // Each top-row element's eigenvalue, computed when a candidate first needs it.
+        let mut eigenvalues: Vec<Option<f64>> = vec![None; mesh.nx];
+        let mut nodes = Vec::new();
+        for i in 0..=mesh.nx {
+            let node = first + i;
+            let [x, y] = mesh.mesh.coords[node];
+            if (x - center_x).abs() > 1.1 * radius {
+                continue;
+            }
+            // The top-row elements holding node (i, ny): i - 1 and i.
+            let mut lambda_i: f64 = 0.0;
+            if penalty_scale > 0.0 {
+                for e in [i.wrapping_sub(1), i].into_iter().filter(|&e| e < mesh.nx) {
+                    let l = *eigenvalues[e].get_or_insert_with(|| lambda(top_row + e));
+                    lambda_i = lambda_i.max(l);
                 }
-                // The top-row elements holding node (i, ny): i - 1 and i.
-                let mut lambda_i: f64 = 0.0;
-                for e in [i.wrapping_sub(1), i] {
-                    if e < mesh.nx {
-                        lambda_i = lambda_i.max(lambda(top_row + e));
-                    }
-                }
-                Some(SurfaceNode {
-                    node,
-                    x,
-                    y,
-                    stiffness: penalty_scale * mass[node] * lambda_i,
-                })
-            })
-            .collect();
+            }
+            nodes.push(SurfaceNode {
+                node,
+                x,
+                y,
+                stiffness: penalty_scale * mass[node] * lambda_i,
+            });
+        }
         let top = mesh.mesh.coords[first][1];
         NoseSurface {
             center_x,

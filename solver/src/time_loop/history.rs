@@ -175,6 +175,7 @@ impl<'s> Recorder<'s> {
         sink: &'s mut dyn HistorySink,
         dt: f64,
         dt_critical: f64,
+        dt_plate: f64,
     ) -> Result<Self> {
         let columns = history_columns(scene, &probes);
         sink.begin(&columns)?;
@@ -186,7 +187,7 @@ impl<'s> Recorder<'s> {
             contact_intervals: Vec::new(),
             final_impactor_velocity: None,
             max_patch: scene.surface_impactor().map(|_| [0.0, 0.0]),
-            dt_plate: dt_critical,
+            dt_plate,
             max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
             max_balance_error: 0.0,
             dt,
@@ -276,11 +277,6 @@ impl<'s> Recorder<'s> {
         row.extend(at.energies.as_row());
         row.push(at.imbalance); // divided by the run's largest energy at the end
         self.sink.row(row)
-    }
-
-    /// The stable step of the plate without the contact's springs, s.
-    pub(crate) fn plate_step(&mut self, dt_plate: f64) {
-        self.totals.dt_plate = dt_plate;
     }
 
     /// The run stopped after step `n` at `t` (`at` its last sample): closes the open contact

@@ -235,8 +235,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let probes = locate_probes(scene, mesh, &model.formulation)?;
     let clock = Clock::new(scene, dt);
     let mut watch = Watch::new(scene, observer, &clock);
-    let mut recorder = Recorder::new(scene, probes, sink, dt, dt_critical)?;
-    recorder.plate_step(dt_plate);
+    let mut recorder = Recorder::new(scene, probes, sink, dt, dt_critical, dt_plate)?;
     let mut stepper = Stepper::new(scene, mesh, model, dt, dt_critical, surface);
     let mut n: u64 = 0;
     loop {

@@ -26,8 +26,8 @@ pub(crate) struct SurfaceImpact {
     predicted: Vec<[f64; 2]>,
     inverse_mass: Vec<[f64; 2]>,
     scratch: KinematicScratch,
-    /// The work of the contact forces on the plate and the impactor up to `t_n` (trapezoidal,
-    /// whole plate), J, with the forces (modelled part, N), the candidates' displacements (m),
+    /// Kinematic enforcement: the work of the contact forces on the plate and the impactor up to
+    /// `t_n` (trapezoidal, whole plate), J, with the forces (modelled part, N), the candidates' displacements (m),
     /// the impactor's force (N) and displacement (m) at the last step it was summed to.
     work: f64,
     last_forces: Vec<[f64; 2]>,
@@ -37,7 +37,8 @@ pub(crate) struct SurfaceImpact {
 }
 
 impl SurfaceImpact {
-    /// The nose over `mesh` with penalty springs from `model`'s masses and element eigenvalues.
+    /// The nose over `mesh`; under the penalty enforcement with springs from `model`'s masses
+    /// and element eigenvalues.
     pub fn new<F: Formulation, M: ConstitutiveModel>(
         spec: &SurfaceImpactor,
         mesh: &PlateMesh,
@@ -45,13 +46,13 @@ impl SurfaceImpact {
         density: f64,
     ) -> SurfaceImpact {
         let elastic = model.material.elastic();
-        let nose = NoseSurface::new(
-            mesh,
-            spec.nose_radius,
-            spec.contact.penalty_scale,
-            &model.mass,
-            |e| element_max_eigenvalue(&model.formulation, elastic, density, e),
-        );
+        let penalty_scale = match spec.contact.enforcement {
+            Enforcement::Penalty => spec.contact.penalty_scale,
+            Enforcement::Kinematic => 0.0,
+        };
+        let nose = NoseSurface::new(mesh, spec.nose_radius, penalty_scale, &model.mass, |e| {
+            element_max_eigenvalue(&model.formulation, elastic, density, e)
+        });
         let k = nose.nodes.len();
         let inverse_mass = nose
             .nodes
@@ -118,8 +119,8 @@ impl SurfaceImpact {
 
     /// Step 2 at `t_n` (`h` the velocity step, s; `u`, `v`, `f_int` the plate's `u_n`,
     /// `v_{n-1/2}` and `f_int - f_ext` without the contact): the kinematic enforcement's forces
-    /// at `t_n` from the contact-free prediction, and the work up to `t_n`. Returns `F_n`
-    /// (whole plate, N).
+    /// at `t_n` from the contact-free prediction, and their work up to `t_n` (the penalty's
+    /// forces at `t_n` came with step 5). Returns `F_n` (whole plate, N).
     pub fn solve(&mut self, dt: f64, h: f64, u: &[f64], v: &[f64], f_int: &[f64]) -> f64 {
         if self.enforcement == Enforcement::Kinematic {
             for (k, n) in self.nose.nodes.iter().enumerate() {
@@ -138,8 +139,8 @@ impl SurfaceImpact {
                 &mut self.scratch,
                 &mut self.forces,
             );
+            self.add_work(u);
         }
-        self.add_work(u);
         self.force()
     }
 

@@ -94,9 +94,10 @@ fn measure(frame: &FieldFrame, n: usize, size: f64, e_star: f64) -> BTreeMap<Str
     let p = 2.0 * half / WIDTH;
     let a = (4.0 * p * RADIUS / (std::f64::consts::PI * e_star)).sqrt();
     let p0 = 2.0 * p / (std::f64::consts::PI * a);
-    let (axis, _, axis_tributary) = profile[n];
-    debug_assert!(axis.abs() < 1e-12);
-    let p_axis = profile[n].1 / (axis_tributary * WIDTH);
+    // The last node of the top row is the one on the axis.
+    let (axis_x, axis_force, axis_tributary) = profile[n];
+    debug_assert!(axis_x.abs() < 1e-12);
+    let p_axis = axis_force / (axis_tributary * WIDTH);
     let second: f64 = profile.iter().map(|q| q.1 * q.0 * q.0).sum();
     let a_measured = 2.0 * (second / half).sqrt();
     let inside: Vec<f64> = profile
