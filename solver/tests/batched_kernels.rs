@@ -3,14 +3,17 @@
 //! be BIT-IDENTICAL, element by element and over whole runs.
 //! - Element level: every element x material (elastic by stiffness matrix and by stress path,
 //!   von Mises with linear and with tabulated hardening, with the elastic screen where the
-//!   solver uses it), seeded random distorted meshes whose element counts are not multiples
+//!   solver uses it; rate-dependent: Cowper-Symonds with a whole exponent (products) and with a
+//!   real one on a table (`powf`), Johnson-Cook with heating), seeded random distorted meshes whose element counts are not multiples
 //!   of the lane count (and span several chunks), random displacement fields that load some
 //!   elements past yield while others stay elastic, unload them and reverse them.
-//! - Whole runs: the example and paper scenes' summaries and histories, bit for bit.
+//! - Whole runs: the example and paper scenes' summaries and histories, bit for bit, and the
+//!   Table 1 plate with Cowper-Symonds and with Johnson-Cook and heating.
 
 use std::path::Path;
 
 use impact_solver::element::Formulation;
+use impact_solver::input::rate_law::{RateLaw, Thermal};
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
@@ -23,6 +26,21 @@ const ELASTIC: &str = include_str!("../../verification/scenes/example-elastic.ya
 const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
 const PAPER_ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
 const PAPER_PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
+const PAPER_COWPER_SYMONDS: &str =
+    include_str!("../../verification/scenes/paper-plastic-cowper-symonds.yaml");
+
+/// The plastic materials of the element-level comparison.
+const PLASTIC_VARIANTS: [&str; 5] = [
+    "linear",
+    "table",
+    "cowper-symonds",
+    "cowper-symonds-table-real-q",
+    "johnson-cook-heating",
+];
+
+/// A time step for the rate-dependent models (s); the fields below jump, so their rates are
+/// huge: the solve's far end.
+const RATE_DT: f64 = 1e-7;
 
 const ELEMENTS: [ElementKind; 3] = [
     ElementKind::Q4Full,
@@ -73,6 +91,7 @@ impl UseModel for Trace<'_> {
         self,
         mut model: PlateModel<F, M>,
     ) -> Vec<Vec<String>> {
+        model.material.set_time_step(RATE_DT);
         self.0.iter().map(|u| trace_of(&mut model, u)).collect()
     }
 }
@@ -96,17 +115,60 @@ fn fields(mesh: &PlateMesh, random: &mut Random, length: f64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-fn scene(nx: usize, ny: usize, element: ElementKind, seed: u64, table: bool) -> Scene {
+/// Johnson-Cook with heating (the DynELA Taylor bar's 42CrMo4, scaled to yield near the
+/// example plate's 250 MPa).
+fn johnson_cook_heating() -> Plasticity {
+    Plasticity {
+        yield_stress: 250e6,
+        hardening: Hardening::Power {
+            coefficient: 190e6,
+            exponent: 0.168,
+        },
+        rate: Some(RateLaw::JohnsonCook {
+            c: 0.0089,
+            reference_rate: 1.0,
+            thermal: Some(Thermal {
+                initial_temperature: 293.15,
+                melting_temperature: 1813.15,
+                specific_heat: 473.0,
+                taylor_quinney: 0.9,
+                softening_exponent: 1.1,
+            }),
+        }),
+    }
+}
+
+/// The example plate's material as `variant` (one of [`PLASTIC_VARIANTS`]).
+fn plastic_variant(variant: &str) -> Option<Plasticity> {
+    let table = Hardening::Table(vec![(0.0, 250e6), (0.002, 290e6), (0.01, 320e6)]);
+    let cowper_symonds = |q| Some(RateLaw::CowperSymonds { d: 40.4, q });
+    let with = |hardening, rate| Plasticity {
+        yield_stress: 250e6,
+        hardening,
+        rate,
+    };
+    match variant {
+        "table" => Some(with(table, None)),
+        "cowper-symonds" => Some(with(
+            Hardening::Linear {
+                tangent_modulus: 2e9,
+            },
+            cowper_symonds(5.0),
+        )),
+        "cowper-symonds-table-real-q" => Some(with(table, cowper_symonds(4.5))),
+        "johnson-cook-heating" => Some(johnson_cook_heating()),
+        _ => None,
+    }
+}
+
+fn scene(nx: usize, ny: usize, element: ElementKind, seed: u64, variant: &str) -> Scene {
     let mut s = Scene::from_yaml(PLASTIC, Path::new("batched.yaml")).unwrap();
     s.mesh.nx = nx;
     s.mesh.ny = ny;
     s.mesh.element = element;
     s.mesh.distortion = 0.05 * (seed % 5) as f64;
-    if table {
-        s.material.plasticity = Some(Plasticity {
-            yield_stress: 250e6,
-            hardening: Hardening::Table(vec![(0.0, 250e6), (0.002, 290e6), (0.01, 320e6)]),
-        });
+    if let Some(p) = plastic_variant(variant) {
+        s.material.plasticity = Some(p);
     }
     s
 }
@@ -125,13 +187,14 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
         // 15, 78, 35, 124 elements: partial batches, several chunks.
         assert!((nx * ny) % LANES != 0);
         for element in ELEMENTS {
-            for (kernel, table) in [
-                (Kernel::Elastic, false),
-                (Kernel::ElasticStressPath, false),
-                (Kernel::ElasticStiffnessMatrix, false),
-                (Kernel::Plastic, false),
-                (Kernel::Plastic, true),
-            ] {
+            let elastic = [
+                Kernel::Elastic,
+                Kernel::ElasticStressPath,
+                Kernel::ElasticStiffnessMatrix,
+            ]
+            .map(|k| (k, "linear"));
+            let plastic = PLASTIC_VARIANTS.map(|v| (Kernel::Plastic, v));
+            for (kernel, table) in elastic.into_iter().chain(plastic) {
                 let s = scene(nx, ny, element, case as u64, table);
                 let mesh = PlateMesh::new(&s.plate, &s.mesh);
                 let u = fields(&mesh, &mut random, s.plate.length);
@@ -142,7 +205,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
                     for (call, (a, b)) in reference.iter().zip(&traced).enumerate() {
                         assert!(
                             a == b,
-                            "{} {kernel:?} table {table} {nx}x{ny} call {call} on {}: differs",
+                            "{} {kernel:?} {table} {nx}x{ny} call {call} on {}: differs",
                             element.name(),
                             path.name()
                         );
@@ -162,7 +225,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
             }
         }
     }
-    assert_eq!(yielded_and_elastic, 4 * 3 * 2);
+    assert_eq!(yielded_and_elastic, 4 * 3 * PLASTIC_VARIANTS.len());
 }
 
 /// A whole run's summary without its timings, and its history.
@@ -183,8 +246,14 @@ fn whole_runs_are_bit_identical_on_both_paths() {
         ("example-plastic", PLASTIC),
         ("paper-elastic", PAPER_ELASTIC),
         ("paper-plastic", PAPER_PLASTIC),
+        ("paper-plastic-cowper-symonds", PAPER_COWPER_SYMONDS),
+        ("paper-plastic-johnson-cook-heating", PAPER_PLASTIC),
     ] {
         let mut s = Scene::from_yaml(text, Path::new(name)).unwrap();
+        if name.contains("johnson-cook") {
+            s.material.plasticity = Some(johnson_cook_heating());
+            s.time.end = impact_solver::scene::End::At(1e-3);
+        }
         s.output.fields_every = None;
         let (summary, history) = run(&s, KernelPath::Scalar);
         let (summary_b, history_b) = run(&s, KernelPath::fastest());

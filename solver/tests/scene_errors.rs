@@ -591,3 +591,89 @@ fn an_unclosed_quote_says_where_the_string_starts() {
         ],
     );
 }
+
+const PLASTIC_EXAMPLE: &str = include_str!("../../verification/scenes/example-plastic.yaml");
+
+/// The plastic example scene with its `hardening` line (line 10) followed by `rate` lines,
+/// or with `yield_stress` and `hardening` replaced by `rate` lines (`johnson_cook`).
+fn with_rate(rate: &str, keep_curve: bool) -> std::result::Result<Scene, String> {
+    let curve = "    yield_stress: 250.0e6\n    hardening: {linear: 1.5e9}";
+    let at = PLASTIC_EXAMPLE.find(curve).expect("the example's curve");
+    let end = PLASTIC_EXAMPLE[at..].find('\n').unwrap() + at + 1;
+    let end = PLASTIC_EXAMPLE[end..].find('\n').unwrap() + end;
+    let kept = if keep_curve {
+        &PLASTIC_EXAMPLE[at..end]
+    } else {
+        ""
+    };
+    let text = format!(
+        "{}{kept}\n    rate:\n{rate}{}",
+        &PLASTIC_EXAMPLE[..at],
+        &PLASTIC_EXAMPLE[end..]
+    );
+    Scene::from_yaml(&text, Path::new("bad.yaml")).map_err(|e| e.to_string())
+}
+
+#[test]
+fn rate_laws_are_read_and_bad_parameters_named() {
+    use impact_solver::input::rate_law::RateLaw;
+    let cs = with_rate("      cowper_symonds: {D: 40.4, q: 5}", true).unwrap();
+    assert_eq!(
+        cs.rate_law(),
+        Some(&RateLaw::CowperSymonds { d: 40.4, q: 5.0 })
+    );
+    let jc = "      johnson_cook: {A: 806.0e6, B: 614.0e6, n: 0.168, C: 0.0089, reference_rate: 1.0, m: 1.1,\n        thermal: {initial_temperature: 293.15, melting_temperature: 1813.15, specific_heat: 473.0, taylor_quinney: 0.9}}";
+    let s = with_rate(jc, false).unwrap();
+    let p = s.material.plasticity.as_ref().unwrap();
+    assert_eq!(p.yield_stress, 806e6);
+    assert!(s.rate_law().unwrap().thermal().is_some());
+    let e = with_rate("      cowper_symonds: {D: -40.4, q: 5}", true).unwrap_err();
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:12:",
+            "material.plasticity.rate.cowper_symonds.D",
+            "-40.4",
+            "> 0",
+        ],
+    );
+    let e = with_rate("      cowper_symonds: {D: 40.4, q: 0}", true).unwrap_err();
+    assert_mentions(&e, &["bad.yaml:12:", "cowper_symonds.q", "= 0", "exponent"]);
+    let e = with_rate(
+        &jc.replace("melting_temperature: 1813.15", "melting_temperature: 200.0"),
+        false,
+    )
+    .unwrap_err();
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:12:",
+            "thermal.melting_temperature",
+            "200",
+            "above initial_temperature = 293.15 K",
+        ],
+    );
+    let e = with_rate(&jc.replace(" m: 1.1,", ""), false).unwrap_err();
+    assert_mentions(&e, &["johnson_cook.m", "missing", "needed with thermal"]);
+    let e = with_rate(
+        &jc.replace("taylor_quinney: 0.9", "taylor_quinney: 1.5"),
+        false,
+    )
+    .unwrap_err();
+    assert_mentions(&e, &["thermal.taylor_quinney", "1.5", "[0, 1]"]);
+    let e = with_rate(jc, true).unwrap_err();
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:9:",
+            "material.plasticity.yield_stress",
+            "left out",
+            "johnson_cook",
+        ],
+    );
+    let e = with_rate("      viscous: {D: 40.4}", true).unwrap_err();
+    assert_mentions(
+        &e,
+        &["material.plasticity.rate", "cowper_symonds", "johnson_cook"],
+    );
+}

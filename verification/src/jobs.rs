@@ -156,11 +156,7 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             s.output.fields_every = Some(2e-6);
         }
         let mut obs = StressBound {
-            flow: Some(FlowCurve::new(
-                p.yield_stress,
-                &p.hardening,
-                s.material.youngs_modulus,
-            )),
+            flow: FlowCurve::new(p.yield_stress, &p.hardening, s.material.youngs_modulus),
             yield_stress: p.yield_stress,
             max_ratio: 0.0,
             max_eqps: 0.0,
@@ -263,6 +259,38 @@ fn hardening_text(h: &impact_solver::scene::Hardening) -> String {
             let rows: Vec<String> = rows.iter().map(|(e, s)| format!("[{e}, {s:e}]")).collect();
             format!("{{table: [{}]}}", rows.join(", "))
         }
+        Hardening::Power {
+            coefficient,
+            exponent,
+        } => format!("B k^n with B = {coefficient:e} Pa, n = {exponent}"),
+    }
+}
+
+/// The rate law in words (empty when rate-independent).
+fn rate_text(rate: Option<&impact_solver::input::rate_law::RateLaw>) -> String {
+    use impact_solver::input::rate_law::RateLaw;
+    match rate {
+        None => String::new(),
+        Some(RateLaw::CowperSymonds { d, q }) => {
+            format!(", Cowper-Symonds D = {d} 1/s, q = {q}")
+        }
+        Some(RateLaw::JohnsonCook {
+            c,
+            reference_rate,
+            thermal,
+        }) => {
+            let heat = thermal.as_ref().map_or(String::new(), |t| {
+                format!(
+                    ", adiabatic heating from {} K (melting {} K, c = {} J/(kg K), beta = {}, m = {})",
+                    t.initial_temperature,
+                    t.melting_temperature,
+                    t.specific_heat,
+                    t.taylor_quinney,
+                    t.softening_exponent
+                )
+            });
+            format!(", Johnson-Cook C = {c}, reference rate {reference_rate} 1/s{heat}")
+        }
     }
 }
 
@@ -299,9 +327,10 @@ fn material_text(scene: &Scene) -> String {
     let plastic = match &mat.plasticity {
         None => "elastic".to_string(),
         Some(pl) => format!(
-            "von Mises, yield {:e} Pa, hardening {}",
+            "von Mises, yield {:e} Pa, hardening {}{}",
             pl.yield_stress,
-            hardening_text(&pl.hardening)
+            hardening_text(&pl.hardening),
+            rate_text(pl.rate.as_ref())
         ),
     };
     format!(

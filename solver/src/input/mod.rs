@@ -7,6 +7,7 @@
 pub mod budget;
 pub mod error;
 pub mod overrides;
+pub mod rate_law;
 pub mod scene;
 pub mod time_step;
 pub mod yaml_field;

@@ -13,6 +13,7 @@ use serde_saphyr::Spanned;
 
 use crate::input::error::{Error, Result, SourceLocation};
 use crate::input::overrides::Overrides;
+use crate::input::rate_law::{RateFile, RateLaw};
 
 type Num = Spanned<f64>;
 type Int = Spanned<i64>;
@@ -67,15 +68,21 @@ pub struct MaterialFile {
     pub youngs_modulus: Num,
     pub poisson_ratio: Num,
     #[serde(default)]
-    pub plasticity: Option<PlasticityFile>,
+    pub plasticity: Option<Spanned<PlasticityFile>>,
 }
 
-/// `plasticity: {yield_stress: Pa, hardening: {linear: E_t Pa} | {table: [[eqps, Pa], ...]}}`.
+/// `plasticity: {yield_stress: Pa, hardening: {linear: E_t Pa} | {table: [[eqps, Pa], ...]},
+/// rate: {...}}`; `rate` optional ([`crate::input::rate_law`]); with `rate: {johnson_cook}`
+/// the flow curve is Johnson-Cook's and `yield_stress` and `hardening` are left out.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlasticityFile {
-    pub yield_stress: Num,
-    pub hardening: Spanned<HardeningFile>,
+    #[serde(default)]
+    pub yield_stress: Option<Num>,
+    #[serde(default)]
+    pub hardening: Option<Spanned<HardeningFile>>,
+    #[serde(default)]
+    pub rate: Option<Spanned<RateFile>>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -442,9 +449,11 @@ pub struct Material {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plasticity {
-    /// Pa
+    /// Initial (static) yield stress, Pa.
     pub yield_stress: f64,
     pub hardening: Hardening,
+    /// The strain-rate law; `None`: rate-independent.
+    pub rate: Option<RateLaw>,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -453,6 +462,8 @@ pub enum Hardening {
     Linear { tangent_modulus: f64 },
     /// (equivalent plastic strain, flow stress Pa), starting at (0, yield stress).
     Table(Vec<(f64, f64)>),
+    /// `yield_stress + coefficient k^exponent` (Johnson-Cook's `A + B k^n`), Pa.
+    Power { coefficient: f64, exponent: f64 },
 }
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -674,6 +685,11 @@ impl Scene {
         self.material.plasticity.is_some()
     }
 
+    /// The plasticity's strain-rate law, if any.
+    pub fn rate_law(&self) -> Option<&RateLaw> {
+        self.material.plasticity.as_ref()?.rate.as_ref()
+    }
+
     pub fn impactor(&self) -> Option<&Impactor> {
         match &self.load {
             Load::Impactor(i) => Some(i),
@@ -766,22 +782,22 @@ fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides) -> S
     scene
 }
 
-struct Validator<'a> {
+pub(super) struct Validator<'a> {
     source: &'a Path,
 }
 
 /// A validation rule: what a value must satisfy, in words.
 #[derive(Clone, Copy)]
-struct Rule {
-    allowed: &'static str,
-    ok: fn(f64) -> bool,
+pub(super) struct Rule {
+    pub(super) allowed: &'static str,
+    pub(super) ok: fn(f64) -> bool,
 }
 
-const POSITIVE: Rule = Rule {
+pub(super) const POSITIVE: Rule = Rule {
     allowed: "must be a finite number > 0",
     ok: |v| v.is_finite() && v > 0.0,
 };
-const NON_NEGATIVE: Rule = Rule {
+pub(super) const NON_NEGATIVE: Rule = Rule {
     allowed: "must be a finite number >= 0",
     ok: |v| v.is_finite() && v >= 0.0,
 };
@@ -803,7 +819,7 @@ impl Validator<'_> {
         SourceLocation::of(self.source, spanned)
     }
 
-    fn check(&self, value: &Num, field: &str, rule: Rule) -> Result<f64> {
+    pub(super) fn check(&self, value: &Num, field: &str, rule: Rule) -> Result<f64> {
         if (rule.ok)(value.value) {
             Ok(value.value)
         } else {
@@ -816,7 +832,7 @@ impl Validator<'_> {
         }
     }
 
-    fn fail<T, U>(
+    pub(super) fn fail<T, U>(
         &self,
         at: &Spanned<T>,
         field: &str,
@@ -854,7 +870,7 @@ impl Validator<'_> {
         let youngs_modulus = self.check(&m.youngs_modulus, "material.youngs_modulus", POSITIVE)?;
         let plasticity = match m.plasticity {
             None => None,
-            Some(p) => Some(self.plasticity(p, youngs_modulus)?),
+            Some(p) => Some(self.plasticity(&p, youngs_modulus)?),
         };
         Ok(Material {
             density: self.check(&m.density, "material.density", POSITIVE)?,
@@ -864,18 +880,83 @@ impl Validator<'_> {
         })
     }
 
-    fn plasticity(&self, p: PlasticityFile, youngs_modulus: f64) -> Result<Plasticity> {
-        let yield_stress = self.check(
-            &p.yield_stress,
-            "material.plasticity.yield_stress",
-            POSITIVE,
-        )?;
+    fn plasticity(&self, p: &Spanned<PlasticityFile>, youngs_modulus: f64) -> Result<Plasticity> {
+        let (rate, power) = match &p.value.rate {
+            None => (None, None),
+            Some(r) => {
+                let (law, power) = self.rate_law(&r.value)?;
+                (Some(law), power)
+            }
+        };
+        if let Some((a, b, n)) = power {
+            return self.johnson_cook_curve(p, rate, (a, b, n));
+        }
+        let missing = |key: &str| {
+            self.fail(
+                p,
+                &format!("material.plasticity.{key}"),
+                "missing",
+                "needed unless rate: {johnson_cook: {A, B, n, ...}} gives the flow curve",
+            )
+        };
+        let Some(ys) = &p.value.yield_stress else {
+            return missing("yield_stress");
+        };
+        let Some(h) = &p.value.hardening else {
+            return missing("hardening");
+        };
+        let yield_stress = self.check(ys, "material.plasticity.yield_stress", POSITIVE)?;
+        Ok(Plasticity {
+            yield_stress,
+            hardening: self.hardening(h, yield_stress, youngs_modulus)?,
+            rate,
+        })
+    }
+
+    /// Johnson-Cook's flow curve `A + B k^n`: `yield_stress` and `hardening` must be absent.
+    fn johnson_cook_curve(
+        &self,
+        p: &Spanned<PlasticityFile>,
+        rate: Option<RateLaw>,
+        (a, b, n): (f64, f64, f64),
+    ) -> Result<Plasticity> {
+        let given = [
+            (
+                "yield_stress",
+                p.value.yield_stress.as_ref().map(|v| self.at(v)),
+            ),
+            ("hardening", p.value.hardening.as_ref().map(|v| self.at(v))),
+        ];
+        if let Some((key, Some(at))) = given.into_iter().find(|(_, at)| at.is_some()) {
+            return Err(Error::invalid(
+                at,
+                &format!("material.plasticity.{key}"),
+                "given",
+                "must be left out with rate: {johnson_cook}: A, B and n are the flow curve",
+            ));
+        }
+        Ok(Plasticity {
+            yield_stress: a,
+            hardening: Hardening::Power {
+                coefficient: b,
+                exponent: n,
+            },
+            rate,
+        })
+    }
+
+    fn hardening(
+        &self,
+        h: &Spanned<HardeningFile>,
+        yield_stress: f64,
+        youngs_modulus: f64,
+    ) -> Result<Hardening> {
         let field = "material.plasticity.hardening";
-        let hardening = match &p.hardening.value {
+        match &h.value {
             HardeningFile::Linear(et) => {
                 if !(et.is_finite() && *et >= 0.0 && *et < youngs_modulus) {
                     return self.fail(
-                        &p.hardening,
+                        h,
                         &format!("{field}.linear"),
                         et,
                         format!(
@@ -883,16 +964,12 @@ impl Validator<'_> {
                         ),
                     );
                 }
-                Hardening::Linear {
+                Ok(Hardening::Linear {
                     tangent_modulus: *et,
-                }
+                })
             }
-            HardeningFile::Table(rows) => self.hardening_table(&p.hardening, rows, yield_stress)?,
-        };
-        Ok(Plasticity {
-            yield_stress,
-            hardening,
-        })
+            HardeningFile::Table(rows) => self.hardening_table(h, rows, yield_stress),
+        }
     }
 
     fn hardening_table(

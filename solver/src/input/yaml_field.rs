@@ -321,6 +321,7 @@ fn kinds(leaf: &str) -> &'static str {
         "load" => "`impactor: {...}`, `pulse: {...}` or `traction: {...}`",
         "contact_law" => "`{paper: {length_unit: m}}` or `{johnson: {datum_depth: m}}`",
         "hardening" => "`{linear: Pa}` or `{table: [[eqps, Pa], ...]}`",
+        "rate" => "`{cowper_symonds: {D: 1/s, q: -}}` or `{johnson_cook: {A: Pa, B: Pa, n, C, reference_rate: 1/s, m, thermal: {...}}}`",
         _ => "one key naming the kind, with its settings",
     }
 }

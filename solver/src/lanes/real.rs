@@ -70,6 +70,9 @@ pub trait Real:
     fn of_batch(stored: &Lanes, at: usize) -> Self;
     /// The batch that holds `at` (an element for `f64`, a batch for [`Lanes`]).
     fn batch_of(at: usize) -> usize;
+    /// `f` of each lane: a scalar function (`f64::ln`, `f64::powf`, a table look-up) applied
+    /// lane by lane, so both paths call the same scalar code and get the same bits.
+    fn map_lanes(self, f: impl Fn(f64) -> f64) -> Self;
 }
 
 impl Real for f64 {
@@ -137,6 +140,10 @@ impl Real for f64 {
     fn batch_of(e: usize) -> usize {
         e / LANES
     }
+    #[inline(always)]
+    fn map_lanes(self, f: impl Fn(f64) -> f64) -> f64 {
+        f(self)
+    }
 }
 
 impl Real for Lanes {
@@ -201,5 +208,9 @@ impl Real for Lanes {
     #[inline(always)]
     fn batch_of(b: usize) -> usize {
         b
+    }
+    #[inline(always)]
+    fn map_lanes(self, f: impl Fn(f64) -> f64) -> Lanes {
+        self.map(f)
     }
 }

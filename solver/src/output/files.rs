@@ -402,6 +402,12 @@ fn write_vtu(mesh: &Mesh, frame: &FieldFrame, path: &Path) -> Result<()> {
     }
     scalar_array(&mut s, "von_mises_Pa", frame.von_mises.iter().copied());
     scalar_array(&mut s, "eqps", frame.eqps.iter().copied());
+    if let Some(rate) = &frame.plastic_strain_rate {
+        scalar_array(&mut s, "plastic_strain_rate_1_s", rate.iter().copied());
+    }
+    if let Some(t) = &frame.temperature {
+        scalar_array(&mut s, "temperature_K", t.iter().copied());
+    }
     s.push_str("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     w.write_all(s.as_bytes()).map_err(io)?;
     w.flush().map_err(io)

@@ -94,6 +94,19 @@ pub struct Summary {
     /// Surface coupling: the most nodes in contact at once (whole plate).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_nodes_in_contact: Option<f64>,
+    /// Rate-dependent plasticity: the largest equivalent plastic strain rate over all steps,
+    /// per probe, 1/s.
+    #[serde(
+        rename = "max_plastic_strain_rate_1_s",
+        skip_serializing_if = "BTreeMap::is_empty"
+    )]
+    pub max_plastic_strain_rate: BTreeMap<String, f64>,
+    /// Heating: the highest temperature of the plate's points at the end, K.
+    #[serde(rename = "max_temperature_K", skip_serializing_if = "Option::is_none")]
+    pub max_temperature: Option<f64>,
+    /// Heating: the plastic work turned into heat, `beta W_p`, J (whole width).
+    #[serde(rename = "heat_J", skip_serializing_if = "Option::is_none")]
+    pub heat: Option<f64>,
 }
 
 impl Summary {
@@ -159,6 +172,12 @@ impl Summary {
             contact_step_factor: t.max_patch.map(|_| t.dt_critical / t.dt_plate),
             max_contact_half_width: t.max_patch.map(|p| p[0]),
             max_nodes_in_contact: t.max_patch.map(|p| p[1]),
+            max_plastic_strain_rate: t.max_plastic_strain_rate.iter().cloned().collect(),
+            max_temperature: t.max_temperature,
+            heat: scene
+                .rate_law()
+                .and_then(|r| r.thermal())
+                .map(|th| th.taylor_quinney * t.final_energy.plastic_work),
         }
     }
 }

@@ -70,6 +70,17 @@ pub trait ConstitutiveModel: Sync + 'static {
     fn virgin<R: Real>(&self, _batch: &Self::Batch, _at: usize) -> R::Mask {
         R::not(R::splat(0.0).gt(R::splat(0.0)))
     }
+    /// Tells a rate-dependent model the run's time step (s), before the first update.
+    fn set_time_step(&mut self, _dt: f64) {}
+    /// A rate-dependent model's equivalent plastic strain rate over the last step (1/s);
+    /// `None` for a rate-independent model.
+    fn plastic_strain_rate(&self, _state: &Self::State) -> Option<f64> {
+        None
+    }
+    /// A heating model's temperature (K); `None` for a model without temperature.
+    fn temperature(&self, _state: &Self::State) -> Option<f64> {
+        None
+    }
 }
 
 /// `update(strain of lane l, element)` for each active lane `l` of `at`, one element at a
@@ -185,8 +196,10 @@ pub struct FlowCurve {
 }
 
 impl FlowCurve {
-    pub fn new(yield_stress: f64, hardening: &Hardening, youngs_modulus: f64) -> FlowCurve {
-        match hardening {
+    /// The piecewise-linear curve of `hardening`; `None` for a power law (which only the
+    /// rate-dependent model, [`crate::physics::rate_plasticity`], integrates).
+    pub fn new(yield_stress: f64, hardening: &Hardening, youngs_modulus: f64) -> Option<FlowCurve> {
+        Some(match hardening {
             Hardening::Linear { tangent_modulus } => FlowCurve {
                 points: vec![(0.0, yield_stress)],
                 // Uniaxial tangent E_t -> plastic modulus H = E E_t / (E - E_t).
@@ -196,7 +209,8 @@ impl FlowCurve {
                 points: points.clone(),
                 tail_slope: 0.0,
             },
-        }
+            Hardening::Power { .. } => return None,
+        })
     }
 
     /// (flow stress Pa, slope Pa to the right of `k`, next breakpoint after `k` if any).
@@ -233,6 +247,11 @@ impl FlowCurve {
     pub fn flow_stress(&self, k: f64) -> f64 {
         self.piece(k).0
     }
+
+    /// Slope of the flow curve to the right of `k`, Pa.
+    pub fn slope(&self, k: f64) -> f64 {
+        self.piece(k).1
+    }
 }
 
 /// What the radial return needs of a flow curve, in the number type `R`.
@@ -242,6 +261,13 @@ pub trait FlowLaw<R: Real> {
     /// The increment `dk` solving `q - 3 mu dk - sigma_y(k + dk) = 0` (`q`: trial von Mises
     /// stress, Pa; `three_mu`: 3 mu, Pa).
     fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R;
+    /// The plastic work density of the increment `dk` from `k_new - dk` to `k_new` (J/m^3),
+    /// `sy_old` the flow stress at its start and `q_new` the returned von Mises stress (Pa):
+    /// the trapezoid of the flow curve.
+    #[inline(always)]
+    fn plastic_work(&self, sy_old: R, k_new: R, dk: R, _q_new: R) -> R {
+        (sy_old + self.flow_stress(k_new)) * 0.5 * dk
+    }
 }
 
 /// Linear hardening, `sigma_y(k) = yield_stress + modulus k`: one piece, any number type.
@@ -313,7 +339,7 @@ pub struct VonMises {
 }
 
 impl VonMises {
-    fn elastic_strain(strain: &Strain, state: &PlasticState) -> Strain {
+    pub(crate) fn elastic_strain(strain: &Strain, state: &PlasticState) -> Strain {
         let p = &state.plastic_strain;
         [
             strain[0] - p[0],
@@ -322,77 +348,76 @@ impl VonMises {
             strain[3] - 2.0 * p[3],
         ]
     }
+}
 
-    /// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
-    /// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
-    /// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly. The
-    /// trial for every lane, the return where any lane yields, selected per lane; states as
-    /// in [`ConstitutiveModel::update`], written back only for active lanes that yield.
-    #[inline(always)]
-    fn radial_return<R: Real, H: FlowLaw<R>>(
-        &self,
-        flow: &H,
-        strain: &[R; 4],
-        batch: &mut PlasticBatch,
-        (at, active): (usize, R::Mask),
-    ) -> Response<R> {
-        let mu = self.elastic.mu;
-        let bulk = self.elastic.lambda + 2.0 / 3.0 * mu;
-        let mut p = [R::splat(0.0); 4];
-        for (pc, stored) in p.iter_mut().zip(&batch.plastic_strain) {
-            *pc = R::of_batch(stored, at);
+/// Radial return from the trial deviator: the mean stress is elastic (von Mises flow is
+/// deviatoric), the deviator is scaled back to the flow stress. Elastic strain energy
+/// density `K tr^2 / 2 + q^2 / (6 mu)`, from the trial and returned `q` directly. The
+/// trial for every lane, the return where any lane yields, selected per lane; states as
+/// in [`ConstitutiveModel::update`], written back only for active lanes that yield.
+#[inline(always)]
+pub(crate) fn radial_return<R: Real, H: FlowLaw<R>>(
+    elastic: &Elastic,
+    flow: &H,
+    strain: &[R; 4],
+    batch: &mut PlasticBatch,
+    (at, active): (usize, R::Mask),
+) -> Response<R> {
+    let mu = elastic.mu;
+    let bulk = elastic.lambda + 2.0 / 3.0 * mu;
+    let mut p = [R::splat(0.0); 4];
+    for (pc, stored) in p.iter_mut().zip(&batch.plastic_strain) {
+        *pc = R::of_batch(stored, at);
+    }
+    let k_old = R::of_batch(&batch.eqps, at);
+    let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
+    let trace = e[0] + e[1] + e[2];
+    let third = trace * THIRD;
+    let mut dev = [
+        (e[0] - third) * (2.0 * mu),
+        (e[1] - third) * (2.0 * mu),
+        (e[2] - third) * (2.0 * mu),
+        (strain[3] - p[3] * 2.0) * mu,
+    ];
+    let mean = trace * bulk;
+    let volumetric_energy = mean * 0.5 * trace;
+    let q2 = (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) * 1.5 + dev[3] * 3.0 * dev[3];
+    let sy_old = flow.flow_stress(k_old);
+    let mut plastic_work_density = R::splat(0.0);
+    let mut q2_final = q2;
+    // Compare squares: most points are elastic and need no square root.
+    let yields = q2.gt(sy_old * sy_old);
+    if R::any(yields) {
+        // (At least the smallest normal number: a lane with no deviatoric stress, which
+        // does not yield, must not divide 0 by 0 below. A yielding lane has q > 0.)
+        let q = q2.sqrt().max(f64::MIN_POSITIVE);
+        // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
+        let dk = flow.plastic_increment(q, k_old, 3.0 * mu).max(0.0);
+        // Plastic strain increment dk * 3/2 dev/q (tensor shear). No select between the
+        // yielding and the elastic values: a lane that does not yield has q <= sy
+        // (sqrt(fl(sy^2)) = sy), so dk = 0, r = 0 and scale = 1 exactly, and p, dev and q2
+        // come out with their elastic bits. (Written as selects, LLVM turned them into a
+        // branch per lane over transposed components: ~25 % of the yielding kernel.)
+        let r = dk * 1.5 / q;
+        let scale = R::splat(1.0) - r * (2.0 * mu); // q_new / q = 1 - 3 mu dk / q
+        for (pc, dc) in p.iter_mut().zip(&mut dev) {
+            *pc += r * *dc;
+            *dc = *dc * scale;
         }
-        let k_old = R::of_batch(&batch.eqps, at);
-        let e = [strain[0] - p[0], strain[1] - p[1], strain[2] - p[2]];
-        let trace = e[0] + e[1] + e[2];
-        let third = trace * THIRD;
-        let mut dev = [
-            (e[0] - third) * (2.0 * mu),
-            (e[1] - third) * (2.0 * mu),
-            (e[2] - third) * (2.0 * mu),
-            (strain[3] - p[3] * 2.0) * mu,
-        ];
-        let mean = trace * bulk;
-        let volumetric_energy = mean * 0.5 * trace;
-        let q2 =
-            (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]) * 1.5 + dev[3] * 3.0 * dev[3];
-        let sy_old = flow.flow_stress(k_old);
-        let mut plastic_work_density = R::splat(0.0);
-        let mut q2_final = q2;
-        // Compare squares: most points are elastic and need no square root.
-        let yields = q2.gt(sy_old * sy_old);
-        if R::any(yields) {
-            // (At least the smallest normal number: a lane with no deviatoric stress, which
-            // does not yield, must not divide 0 by 0 below. A yielding lane has q > 0.)
-            let q = q2.sqrt().max(f64::MIN_POSITIVE);
-            // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
-            let dk = flow.plastic_increment(q, k_old, 3.0 * mu).max(0.0);
-            // Plastic strain increment dk * 3/2 dev/q (tensor shear). No select between the
-            // yielding and the elastic values: a lane that does not yield has q <= sy
-            // (sqrt(fl(sy^2)) = sy), so dk = 0, r = 0 and scale = 1 exactly, and p, dev and q2
-            // come out with their elastic bits. (Written as selects, LLVM turned them into a
-            // branch per lane over transposed components: ~25 % of the yielding kernel.)
-            let r = dk * 1.5 / q;
-            let scale = R::splat(1.0) - r * (2.0 * mu); // q_new / q = 1 - 3 mu dk / q
-            for (pc, dc) in p.iter_mut().zip(&mut dev) {
-                *pc += r * *dc;
-                *dc = *dc * scale;
-            }
-            q2_final = q2 * scale * scale;
-            let eqps = k_old + dk;
-            let work = (sy_old + flow.flow_stress(eqps)) * 0.5 * dk;
-            plastic_work_density = R::select(yields, work, plastic_work_density);
-            let write = R::and(active, yields);
-            for (stored, &pc) in batch.plastic_strain.iter_mut().zip(&p) {
-                R::store(stored, at, pc, write);
-            }
-            R::store(&mut batch.eqps, at, eqps, write);
+        q2_final = q2 * scale * scale;
+        let eqps = k_old + dk;
+        let work = flow.plastic_work(sy_old, eqps, dk, q * scale);
+        plastic_work_density = R::select(yields, work, plastic_work_density);
+        let write = R::and(active, yields);
+        for (stored, &pc) in batch.plastic_strain.iter_mut().zip(&p) {
+            R::store(stored, at, pc, write);
         }
-        Response {
-            stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
-            strain_energy_density: volumetric_energy + q2_final * (1.0 / (6.0 * mu)),
-            plastic_work_density,
-        }
+        R::store(&mut batch.eqps, at, eqps, write);
+    }
+    Response {
+        stress: [dev[0] + mean, dev[1] + mean, dev[2] + mean, dev[3]],
+        strain_energy_density: volumetric_energy + q2_final * (1.0 / (6.0 * mu)),
+        plastic_work_density,
     }
 }
 
@@ -414,7 +439,7 @@ impl ConstitutiveModel for VonMises {
         batch.eqps.0[l] = state.eqps;
     }
 
-    /// The radial return ([`VonMises::radial_return`]), in lanes for linear hardening; a
+    /// The radial return ([`radial_return`]), in lanes for linear hardening; a
     /// tabulated curve, whose pieces differ from lane to lane, runs it lane by lane.
     #[inline(always)]
     fn update<R: Real>(
@@ -425,10 +450,10 @@ impl ConstitutiveModel for VonMises {
         active: R::Mask,
     ) -> Response<R> {
         match self.flow.linear() {
-            Some(linear) => self.radial_return(&linear, strain, batch, (at, active)),
+            Some(linear) => radial_return(&self.elastic, &linear, strain, batch, (at, active)),
             // Lane `l` of the batch as the scalar path's element `l`.
             None => each_lane(strain, at, active, |e, element| {
-                self.radial_return(&self.flow, e, batch, (element, true))
+                radial_return(&self.elastic, &self.flow, e, batch, (element, true))
             }),
         }
     }
@@ -458,11 +483,13 @@ impl ConstitutiveModel for VonMises {
 }
 
 impl VonMises {
+    /// The rate-independent model of `spec`; `None` without plasticity or with a rate law
+    /// (that is [`crate::physics::rate_plasticity::ViscoPlastic`]'s).
     pub fn new(spec: &MaterialSpec) -> Option<VonMises> {
-        let p = spec.plasticity.as_ref()?;
+        let p = spec.plasticity.as_ref().filter(|p| p.rate.is_none())?;
         Some(VonMises {
             elastic: Elastic::new(spec.youngs_modulus, spec.poisson_ratio),
-            flow: FlowCurve::new(p.yield_stress, &p.hardening, spec.youngs_modulus),
+            flow: FlowCurve::new(p.yield_stress, &p.hardening, spec.youngs_modulus)?,
         })
     }
 }
@@ -491,6 +518,7 @@ fn von_mises_steel(youngs_modulus: f64, yield_stress: f64, hardening: Hardening)
         plasticity: Some(crate::input::scene::Plasticity {
             yield_stress,
             hardening,
+            rate: None,
         }),
     })
     .expect("a material with plasticity")

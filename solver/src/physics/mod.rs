@@ -1,5 +1,6 @@
 //! The physics: the elements ([`element`], eqs. 13-15, on the shape-function derivatives of
-//! [`geometry`] and [`centroid`]), the materials ([`material`], eq. 16), the rigid impactor
+//! [`geometry`] and [`centroid`]), the materials ([`material`], eq. 16, and its rate-dependent
+//! form [`rate_plasticity`]), the rigid impactor
 //! ([`impactor`], eqs. 19-20), its contact law and the solve of eq. (21) ([`contact`], with the
 //! reasons a solve fails in [`contact_failure`]), the rigid nose in surface contact
 //! ([`nose_contact`]), and prescribed loads ([`load`]).
@@ -13,3 +14,4 @@ pub mod impactor;
 pub mod load;
 pub mod material;
 pub mod nose_contact;
+pub mod rate_plasticity;

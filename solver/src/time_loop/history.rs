@@ -127,6 +127,11 @@ pub struct RunTotals {
     /// The stable step of the plate alone (without contact springs), s.
     pub dt_plate: f64,
     pub max_von_mises: Vec<(String, f64)>,
+    /// Largest equivalent plastic strain rate over all steps, per probe, 1/s (rate-dependent
+    /// materials only; else empty).
+    pub max_plastic_strain_rate: Vec<(String, f64)>,
+    /// Highest temperature over the plate's points at the end (heating only rises), K.
+    pub max_temperature: Option<f64>,
     pub max_balance_error: f64,
     pub dt: f64,
     pub dt_critical: f64,
@@ -135,6 +140,17 @@ pub struct RunTotals {
     pub stop: StopReason,
     pub initial_energy: Energies,
     pub final_energy: Energies,
+}
+
+/// What a probe reads at `t_n`.
+#[derive(Debug, Clone, Copy)]
+pub struct ProbeReading {
+    /// `[xx, yy, zz, xy]`, Pa.
+    pub stress: Stress,
+    /// A rate-dependent material's equivalent plastic strain rate over the last step, 1/s.
+    pub plastic_strain_rate: Option<f64>,
+    /// A heating material's temperature, K.
+    pub temperature: Option<f64>,
 }
 
 /// The state of the run at `t_n` that the recorder samples.
@@ -189,6 +205,11 @@ impl<'s> Recorder<'s> {
             max_patch: scene.surface_impactor().map(|_| [0.0, 0.0]),
             dt_plate,
             max_von_mises: probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
+            max_plastic_strain_rate: match scene.rate_law() {
+                Some(_) => probes.iter().map(|p| (p.name.clone(), 0.0)).collect(),
+                None => Vec::new(),
+            },
+            max_temperature: None,
             max_balance_error: 0.0,
             dt,
             dt_critical,
@@ -237,14 +258,14 @@ impl<'s> Recorder<'s> {
     }
 
     /// Records step `n` (`last`: the run stops after it): the largest displacements and probe
-    /// stresses, and a history row when one is due. `stress` gives a probe's stress at `t_n`.
+    /// stresses (and rates), and a history row when one is due. `read` reads a probe at `t_n`.
     pub(crate) fn sample(
         &mut self,
         n: u64,
         dt: f64,
         last: bool,
         at: &Sample,
-        stress: impl Fn(&Probe) -> Stress,
+        read: impl Fn(&Probe) -> ProbeReading,
     ) -> Result<()> {
         let [top, mid, bottom] = at.uy;
         self.totals.max_downward_mid = self.totals.max_downward_mid.min(mid);
@@ -253,8 +274,16 @@ impl<'s> Recorder<'s> {
             *max = [max[0].max(patch[0]), max[1].max(patch[1])];
         }
         let want_row = self.rows.due(n, dt) || last;
-        for (p, max) in self.probes.iter().zip(self.totals.max_von_mises.iter_mut()) {
-            max.1 = max.1.max(von_mises(&stress(p)));
+        for (k, p) in self.probes.iter().enumerate() {
+            let r = read(p);
+            let max = &mut self.totals.max_von_mises[k].1;
+            *max = max.max(von_mises(&r.stress));
+            if let (Some(rate), Some(max)) = (
+                r.plastic_strain_rate,
+                self.totals.max_plastic_strain_rate.get_mut(k),
+            ) {
+                max.1 = max.1.max(rate);
+            }
         }
         if !want_row {
             return Ok(());
@@ -271,8 +300,11 @@ impl<'s> Recorder<'s> {
         }
         row.extend([top, mid, bottom]);
         for p in &self.probes {
-            let st = stress(p);
+            let r = read(p);
+            let st = r.stress;
             row.extend([st[0], st[1], st[3], st[2], von_mises(&st)]);
+            row.extend(r.plastic_strain_rate);
+            row.extend(r.temperature);
         }
         row.extend(at.energies.as_row());
         row.push(at.imbalance); // divided by the run's largest energy at the end
@@ -328,9 +360,16 @@ pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
         c.extend(["contact_half_width_m", "nodes_in_contact"].map(String::from));
     }
     c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
+    let rate = scene.rate_law();
     for p in probes {
         for q in ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"] {
             c.push(format!("{}_{q}", p.name));
+        }
+        if rate.is_some() {
+            c.push(format!("{}_plastic_strain_rate_1_s", p.name));
+        }
+        if rate.and_then(|r| r.thermal()).is_some() {
+            c.push(format!("{}_temperature_K", p.name));
         }
     }
     c.extend(Energies::COLUMNS.map(String::from));

@@ -20,7 +20,7 @@ use crate::physics::material::Elastic;
 use crate::physics::material::{von_mises, ConstitutiveModel, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::history::{
-    locate_probes, HistorySink, Probe, Recorder, RunTotals, Sample, StopReason,
+    locate_probes, HistorySink, Probe, ProbeReading, Recorder, RunTotals, Sample, StopReason,
 };
 use crate::time_loop::schedule::{steps_to, Schedule};
 use crate::time_loop::stable_step::{self, Estimate, Spring};
@@ -159,6 +159,27 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
         self.material.stress(&strain, &self.state(e, p))
     }
 
+    /// The highest temperature over the points (K); `None` for a material without one.
+    pub fn max_temperature(&self) -> Option<f64> {
+        let n = self.formulation.n_elements();
+        (0..n)
+            .flat_map(|e| (0..F::POINTS).map(move |p| (e, p)))
+            .filter_map(|(e, p)| self.material.temperature(&self.state(e, p)))
+            .reduce(f64::max)
+    }
+
+    /// The weighted mean over element `e`'s points of `value` (for field output); `None`
+    /// where the material has no such value.
+    pub fn element_mean(&self, e: usize, value: impl Fn(&M::State) -> Option<f64>) -> Option<f64> {
+        let w = self.formulation.weights(e);
+        let total: f64 = w[..F::POINTS].iter().sum();
+        let mut mean = 0.0;
+        for (p, &wp) in w.iter().enumerate().take(F::POINTS) {
+            mean += wp / total * value(&self.state(e, p))?;
+        }
+        Some(mean)
+    }
+
     /// Element-average stress and equivalent plastic strain (for field output).
     pub fn element_average(&self, e: usize, u: &[f64]) -> (Stress, f64) {
         let w = self.formulation.weights(e);
@@ -188,6 +209,10 @@ pub struct FieldFrame {
     pub stress: Vec<Stress>,
     pub von_mises: Vec<f64>,
     pub eqps: Vec<f64>,
+    /// Per element average, 1/s (rate-dependent materials).
+    pub plastic_strain_rate: Option<Vec<f64>>,
+    /// Per element average, K (heating materials).
+    pub temperature: Option<Vec<f64>>,
     /// Surface coupling: the nose's force on each node at `t_n`, N (whole width; 0 off the
     /// contact).
     pub contact_force: Option<Vec<[f64; 2]>>,
@@ -232,6 +257,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         .map_or(dt_plate, |c| c.stable_step(dt_plate, &model.mass));
     let dt = chosen_step(scene, dt_critical)?;
     crate::input::time_step::check_steps(scene, dt)?;
+    model.material.set_time_step(dt);
     let probes = locate_probes(scene, mesh, &model.formulation)?;
     let clock = Clock::new(scene, dt);
     let mut watch = Watch::new(scene, observer, &clock);
@@ -252,11 +278,13 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
         stepper.check_inversion(n, t, stop.is_some())?;
         let at = stepper.sample(t, applied, &energies, imbalance);
-        recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.stress(p))?;
+        recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.probe(p))?;
         watch.step(n, t, stop.is_some(), &stepper)?;
         if let Some(reason) = stop {
             let balance = stepper.balance;
-            return recorder.finish(n, reason, &at, stepper.initial_energy, &balance);
+            let mut totals = recorder.finish(n, reason, &at, stepper.initial_energy, &balance)?;
+            totals.max_temperature = stepper.model.max_temperature();
+            return Ok(totals);
         }
         // u_{n+1}, then 5: the contact force at n + 1 and the impactor.
         stepper.advance(n, t, applied, balance_error)?;
@@ -613,9 +641,15 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         }
     }
 
-    /// A probe's stress at `u_n`, Pa.
-    fn stress(&self, p: &Probe) -> Stress {
-        self.model.point_stress(p.element, p.point, &self.u)
+    /// A probe's stress (Pa) at `u_n`, and a rate-dependent material's rate and temperature.
+    fn probe(&self, p: &Probe) -> ProbeReading {
+        let state = self.model.state(p.element, p.point);
+        let material = &self.model.material;
+        ProbeReading {
+            stress: self.model.point_stress(p.element, p.point, &self.u),
+            plastic_strain_rate: material.plastic_strain_rate(&state),
+            temperature: material.temperature(&state),
+        }
     }
 
     /// `u_{n+1} = u_n + dt v_{n+1/2}`, then step 5 (impact: the contact force at n + 1 and the
@@ -807,6 +841,12 @@ fn field_frame<F: Formulation, M: ConstitutiveModel>(
         von_mises: averages.iter().map(|a| von_mises(&a.0)).collect(),
         eqps: averages.iter().map(|a| a.1).collect(),
         stress: averages.into_iter().map(|a| a.0).collect(),
+        plastic_strain_rate: (0..n_el)
+            .map(|e| model.element_mean(e, |s| model.material.plastic_strain_rate(s)))
+            .collect(),
+        temperature: (0..n_el)
+            .map(|e| model.element_mean(e, |s| model.material.temperature(s)))
+            .collect(),
         contact_force: None,
     }
 }

@@ -20,6 +20,7 @@ use crate::physics::element::{
     gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
 use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::physics::rate_plasticity::ViscoPlastic;
 use crate::time_loop::integrator::PlateModel;
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
@@ -177,6 +178,9 @@ compiled! {
     selective_plastic: SelectiveQ4, VonMises;
     one_point_elastic: OnePointQ4, Elastic;
     one_point_plastic: OnePointQ4, VonMises;
+    full_rate: FullQ4, ViscoPlastic;
+    selective_rate: SelectiveQ4, ViscoPlastic;
+    one_point_rate: OnePointQ4, ViscoPlastic;
 }
 
 #[cfg(test)]

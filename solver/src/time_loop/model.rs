@@ -9,6 +9,7 @@ use crate::lanes::simd::KernelPath;
 use crate::mesh::{Mesh, PlateMesh};
 use crate::physics::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
 use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::physics::rate_plasticity::ViscoPlastic;
 use crate::time_loop::integrator::PlateModel;
 
 /// One of the element formulations, chosen at run time.
@@ -124,6 +125,25 @@ pub fn build_on<U: UseModel>(
     with_formulation!(formulation, f => with_material(f, request, user))
 }
 
+/// A plastic model handed to `user`. Elastic points at elastic cost where the stiffness
+/// product is cheaper than a plastic point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not
+/// for one point, whose stress path is the cheaper one).
+fn with_plastic<F: Formulation, M: ConstitutiveModel, U: UseModel>(
+    formulation: F,
+    material: M,
+    mesh: &PlateMesh,
+    density: f64,
+    path: KernelPath,
+    user: U,
+) -> U::Output {
+    let model = PlateModel::new(formulation, material, mesh, density).with_kernel_path(path);
+    user.use_model(if F::STIFFNESS_MATRIX_PAYS {
+        model.with_elastic_screen()
+    } else {
+        model
+    })
+}
+
 /// What [`build`] was asked for, handed on to the material stage.
 struct Request<'a> {
     scene: &'a Scene,
@@ -143,20 +163,19 @@ fn with_material<F: Formulation, U: UseModel>(
     user: U,
 ) -> Result<U::Output> {
     let m = &scene.material;
-    let plastic = match kernel {
-        Kernel::Solver | Kernel::Plastic => VonMises::new(m),
-        _ => None,
-    };
-    if let Some(plastic) = plastic {
-        let model = PlateModel::new(formulation, plastic, mesh, m.density).with_kernel_path(path);
-        // Elastic points at elastic cost where the stiffness product is cheaper than a plastic
-        // point that stays elastic (F::STIFFNESS_MATRIX_PAYS; not for one point, whose stress
-        // path is the cheaper one).
-        return Ok(user.use_model(if F::STIFFNESS_MATRIX_PAYS {
-            model.with_elastic_screen()
-        } else {
-            model
-        }));
+    let plastic_kernel = matches!(kernel, Kernel::Solver | Kernel::Plastic);
+    if let Some(rate) = ViscoPlastic::new(m).filter(|_| plastic_kernel) {
+        return Ok(with_plastic(formulation, rate, mesh, m.density, path, user));
+    }
+    if let Some(plastic) = VonMises::new(m).filter(|_| plastic_kernel) {
+        return Ok(with_plastic(
+            formulation,
+            plastic,
+            mesh,
+            m.density,
+            path,
+            user,
+        ));
     }
     if kernel == Kernel::Plastic {
         return Err(Error::invalid(

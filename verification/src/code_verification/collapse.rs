@@ -183,6 +183,7 @@ fn model_material(plate: &Plate, p: &Params) -> Result<VonMises, String> {
             hardening: Hardening::Linear {
                 tangent_modulus: m.tangent_modulus,
             },
+            rate: None,
         }),
     })
     .ok_or_else(|| "static-collapse: not a plastic material".to_string())

@@ -125,6 +125,7 @@ impl Path {
                 hardening: Hardening::Linear {
                     tangent_modulus: self.model.1,
                 },
+                rate: None,
             }),
         })
         .expect("a plastic material")

@@ -89,6 +89,7 @@ pub fn thick_cylinder(p: &Params) -> Result<RunData, String> {
             hardening: Hardening::Linear {
                 tangent_modulus: 0.0,
             },
+            rate: None,
         }),
     })
     .ok_or("thick-cylinder: not a plastic material")?;
