@@ -25,6 +25,7 @@ pub use lanes::{heap, real, simd};
 pub use output::{out_dir, summary};
 pub use physics::{
     centroid, contact, contact_failure, element, geometry, impactor, load, material,
+    rate_plasticity,
 };
 pub use time_loop::{
     energy, history, integrator, internal_forces, interrupt, model, progress, stable_step,

@@ -14,6 +14,7 @@ pub mod macneal_harder;
 pub mod manufactured;
 pub mod orders;
 pub mod plastic_path;
+pub mod rate_path;
 pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
@@ -27,7 +28,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 14] = [
+pub const NAMES: [&str; 15] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -42,6 +43,7 @@ pub const NAMES: [&str; 14] = [
     "thick-cylinder",
     "column-impact",
     "hertz-line",
+    "rate-strain-path",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -61,6 +63,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "thick-cylinder" => thick_cylinder::thick_cylinder(p),
         "column-impact" => column_impact::column_impact(p),
         "hertz-line" => hertz_line::hertz_line(p),
+        "rate-strain-path" => rate_path::rate_strain_path(p),
         _ => return None,
     })
 }
