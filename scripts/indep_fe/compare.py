@@ -11,7 +11,8 @@ peak = max(max|a|, max|b|):
 scale, so its differences are reported as they are (peak := 1).
 
 Summary: relative differences |a - b| / max(|a|, |b|) of the scalar metrics, the probes'
-max von Mises stress, the contact intervals (difference in steps), and the wall time of
+max von Mises stress (and, with a rate law, max plastic strain rate; with `thermal` the max
+temperature and the heat), the contact intervals (difference in steps), and the wall time of
 each side with the ratio b / a.
 
 Exit status of `main`: 0 when every gated difference is within its tolerance, 1 when one is
@@ -31,10 +32,14 @@ from pathlib import Path
 import numpy as np
 
 # scalar summary metrics compared relatively, and those compared exactly
-# (the last three: surface-coupling scenes only, compared when either run has them)
+# (contact_step_factor .. max_nodes_in_contact: surface-coupling scenes only; max_temperature_K,
+# heat_J: rate laws with thermal only (ALGORITHM.md 3b); each compared when either run has it)
 SUMMARY_METRICS = ["impulse_Ns", "peak_contact_force_N", "max_plate_displacement_m",
                    "final_impactor_velocity_mps", "contact_duration_s", "contact_step_factor",
-                   "max_contact_half_width_m", "max_nodes_in_contact"]
+                   "max_contact_half_width_m", "max_nodes_in_contact", "max_temperature_K",
+                   "heat_J"]
+# per-probe summary objects (max_plastic_strain_rate_1_s: with a rate law only)
+SUMMARY_PER_PROBE = ["max_von_mises_Pa", "max_plastic_strain_rate_1_s"]
 SUMMARY_EXACT = ["dt_s", "n_steps", "n_elements"]
 # columns drawn by --plots (those present), each in its own panel with the difference below
 PLOT_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps",
@@ -123,10 +128,12 @@ def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, f
     for k in SUMMARY_METRICS:
         if k in sa or k in sb:
             rows.append((k, sa.get(k), sb.get(k), rel(sa.get(k), sb.get(k))))
-    for p in sorted(set(sa.get("max_von_mises_Pa", {})) | set(sb.get("max_von_mises_Pa", {}))):
-        va = sa.get("max_von_mises_Pa", {}).get(p)
-        vb = sb.get("max_von_mises_Pa", {}).get(p)
-        rows.append((f"max_von_mises_Pa.{p}", va, vb, rel(va, vb)))
+    for key in SUMMARY_PER_PROBE:
+        if key not in sa and key not in sb:
+            continue
+        oa, ob = sa.get(key) or {}, sb.get(key) or {}
+        for p in sorted(set(oa) | set(ob)):
+            rows.append((f"{key}.{p}", oa.get(p), ob.get(p), rel(oa.get(p), ob.get(p))))
     if "max_energy_balance_error" in sa and "max_energy_balance_error" in sb:
         ea, eb = sa["max_energy_balance_error"], sb["max_energy_balance_error"]
         rows.append(("max_energy_balance_error", ea, eb, abs(ea - eb)))   # already a ratio
@@ -162,7 +169,8 @@ def plot(a: dict, b: dict, out_dir: Path, labels: tuple[str, str], fmt: str, tit
     n = min(len(a["time_s"]), len(b["time_s"]))
     t = a["time_s"][:n] * 1e3
     cols = [c for c in PLOT_COLUMNS if c in a and c in b]
-    cols += [c for c in a if c.endswith("_von_mises_Pa") and c in b]
+    cols += [c for c in a if c.endswith(("_von_mises_Pa", "_plastic_strain_rate_1_s",
+                                          "_temperature_K")) and c in b]
     files = []
     for c in cols:
         x, y = a[c][:n], b[c][:n]

@@ -1,5 +1,6 @@
 """Plane-strain small-strain material (ALGORITHM.md section 3): linear elastic, and von Mises
-plasticity with isotropic hardening by radial return in total-strain form.
+plasticity with isotropic hardening by radial return in total-strain form; with
+`plasticity.rate`, the rate (and temperature) dependent return of section 3b (rate.py).
 
 Strain in: (xx, yy, zz, gamma_xy) engineering shear. Stress out: (xx, yy, zz, xy).
 Plastic strain state: (xx, yy, zz, xy) with the TENSOR shear component.
@@ -68,14 +69,25 @@ class Hardening:
 
 
 class MaterialModel:
-    def __init__(self, mat: Material, n_points: int):
+    def __init__(self, mat: Material, n_points: int, dt: float | None = None):
+        """`dt`: the run's time step, needed by a rate law (section 3b) only."""
         self.lam, self.mu = lame(mat.youngs_modulus, mat.poisson_ratio)
         self.plastic = mat.plasticity is not None
         self.eps_p = np.zeros((n_points, 4))
         self.k = np.zeros(n_points)
-        if self.plastic:
+        self.rate = None
+        if self.plastic and mat.plasticity.rate is not None \
+                and mat.plasticity.rate.kind == "johnson_cook":
+            from .rate import JohnsonCookStatic, RateDependence
+            law = mat.plasticity.rate
+            self.hard = JohnsonCookStatic(law.A, law.B, law.n)
+            self.rate = RateDependence(law, self.hard, self.mu, dt, mat.density, n_points)
+        elif self.plastic:
             pl = mat.plasticity
             self.hard = Hardening(mat.youngs_modulus, pl.yield_stress, pl.linear_tangent, pl.table)
+            if pl.rate is not None:
+                from .rate import RateDependence
+                self.rate = RateDependence(pl.rate, self.hard, self.mu, dt, mat.density, n_points)
             if pl.table is not None:
                 slopes = np.diff(self.hard.s_pts) / np.diff(self.hard.k_pts)
                 if slopes.size and slopes.min() <= -3 * self.mu:
@@ -99,16 +111,31 @@ class MaterialModel:
             dd = d[:, 0] ** 2 + d[:, 1] ** 2 + d[:, 2] ** 2 + 2 * d[:, 3] ** 2
             q = np.sqrt(1.5 * dd)
             sy = self.hard(self.k)
+            if self.rate is not None:
+                theta = self.rate.theta()       # start-of-step temperature (section 3b)
+                sy = sy * theta
             yielding = np.flatnonzero(q > sy)
             if yielding.size:
                 ky = self.k[yielding]
-                dk = self.hard.return_map(q[yielding], ky, mu)
+                if self.rate is None:
+                    dk = self.hard.return_map(q[yielding], ky, mu)
+                else:
+                    dk = self.rate.return_map(q[yielding], ky, theta[yielding])
                 n = d[yielding] / np.sqrt(dd[yielding])[:, None]
                 self.eps_p[yielding] += (SQ32 * dk)[:, None] * n
                 s[yielding] -= (2 * mu * SQ32 * dk)[:, None] * n
                 self.k[yielding] = ky + dk
-                dwork = float(np.sum(0.5 * (sy[yielding] + self.hard(ky + dk)) * dk * w[yielding]))
+                if self.rate is None:
+                    dwork = float(np.sum(0.5 * (sy[yielding] + self.hard(ky + dk)) * dk
+                                         * w[yielding]))
+                else:
+                    # section 3b: backward Euler's dissipation q_new dk, q_new = q_tr - 3 mu dk
+                    wd = (q[yielding] - 3 * mu * dk) * dk
+                    dwork = float(np.sum(wd * w[yielding]))
+                    self.rate.commit(yielding, ky, self.k[yielding], wd)
                 ee[yielding] -= (SQ32 * dk)[:, None] * n
+            elif self.rate is not None:
+                self.rate.kdot[:] = 0.0
         # s : eps_e with shear counted twice (ee holds the tensor shear)
         energy = 0.5 * float(np.sum(w * (s[:, 0] * ee[:, 0] + s[:, 1] * ee[:, 1] +
                                          s[:, 2] * ee[:, 2] + 2 * s[:, 3] * ee[:, 3])))

@@ -25,10 +25,36 @@ class Plate:
 
 
 @dataclass
+class Thermal:
+    """Adiabatic heating of the Johnson-Cook law (ALGORITHM.md section 3b)."""
+    initial_temperature: float    # T0, K
+    melting_temperature: float    # Tm, K (> T0)
+    specific_heat: float          # c, J/(kg K)
+    taylor_quinney: float         # beta in [0, 1]
+
+
+@dataclass
+class RateLaw:
+    """material.plasticity.rate (ALGORITHM.md section 3b): cowper_symonds {D, q} or
+    johnson_cook {A, B, n, C, reference_rate, m, thermal}."""
+    kind: str                          # cowper_symonds | johnson_cook
+    D: float | None = None             # Cowper-Symonds, 1/s
+    q: float | None = None             # Cowper-Symonds exponent
+    A: float | None = None             # Johnson-Cook static curve A + B k^n (Pa, Pa, 1)
+    B: float | None = None
+    n: float | None = None
+    C: float | None = None             # Johnson-Cook rate coefficient
+    reference_rate: float | None = None  # 1/s
+    m: float | None = None             # thermal softening exponent (needed with thermal)
+    thermal: Thermal | None = None
+
+
+@dataclass
 class Plasticity:
     yield_stress: float
     linear_tangent: float | None = None      # E_t (Pa), linear hardening
     table: list[tuple[float, float]] | None = None  # [(k_i, sigma_i)], piecewise linear in k
+    rate: RateLaw | None = None              # section 3b; johnson_cook: yield_stress = A
 
 
 @dataclass
@@ -190,6 +216,73 @@ def _parse_hardening(pl: dict, plast: Plasticity, E: float, sy0: float) -> None:
         raise SceneError(f"unknown hardening '{kind}' (linear | table)")
 
 
+CS_KEYS = {"D", "q"}
+JC_KEYS = {"A", "B", "n", "C", "reference_rate", "m", "thermal"}
+THERMAL_KEYS = {"initial_temperature", "melting_temperature", "specific_heat", "taylor_quinney"}
+
+
+def _parse_rate(rate) -> RateLaw:
+    """material.plasticity.rate: {cowper_symonds: {D, q}} | {johnson_cook: {A, B, n, C,
+    reference_rate, m, thermal: {initial_temperature, melting_temperature, specific_heat,
+    taylor_quinney}}} (ALGORITHM.md section 3b)."""
+    where = "material.plasticity.rate"
+    kind, val = _one_of(rate, where)
+    if not isinstance(val, dict):
+        raise SceneError(f"'{where}.{kind}' must be a mapping, got {val!r}")
+    w = f"{where}.{kind}"
+    if kind == "cowper_symonds":
+        _refuse_unknown(val, CS_KEYS, w)
+        return RateLaw("cowper_symonds", D=_pos(_req(val, "D", w), f"{w}.D"),
+                       q=_pos(_req(val, "q", w), f"{w}.q"))
+    if kind != "johnson_cook":
+        raise SceneError(f"unknown rate law '{kind}' (cowper_symonds | johnson_cook)")
+    _refuse_unknown(val, JC_KEYS, w)
+    law = RateLaw("johnson_cook",
+                  A=_pos(_req(val, "A", w), f"{w}.A"),
+                  B=_pos(_req(val, "B", w), f"{w}.B", allow_zero=True),
+                  n=_pos(_req(val, "n", w), f"{w}.n"),
+                  C=_pos(_req(val, "C", w), f"{w}.C", allow_zero=True),
+                  reference_rate=_pos(_req(val, "reference_rate", w), f"{w}.reference_rate"),
+                  m=_pos(val["m"], f"{w}.m") if val.get("m") is not None else None)
+    if val.get("thermal") is not None:
+        th = val["thermal"]
+        wt = f"{w}.thermal"
+        if not isinstance(th, dict):
+            raise SceneError(f"'{wt}' must be a mapping, got {th!r}")
+        _refuse_unknown(th, THERMAL_KEYS, wt)
+        t0 = _pos(_req(th, "initial_temperature", wt), f"{wt}.initial_temperature")
+        tm = _pos(_req(th, "melting_temperature", wt), f"{wt}.melting_temperature")
+        if not tm > t0:
+            raise SceneError(f"{wt}.melting_temperature ({tm}) must be above "
+                             f"initial_temperature ({t0})")
+        beta = float(_req(th, "taylor_quinney", wt))
+        if not 0.0 <= beta <= 1.0:
+            raise SceneError(f"{wt}.taylor_quinney must be in [0, 1], got {beta}")
+        if law.m is None:
+            raise SceneError(f"{w}.m (thermal softening exponent) is needed with thermal")
+        law.thermal = Thermal(t0, tm, _pos(_req(th, "specific_heat", wt), f"{wt}.specific_heat"),
+                              beta)
+    return law
+
+
+def _parse_plasticity(pl: dict, E: float) -> Plasticity:
+    """material.plasticity: yield stress and hardening (section 3), and the optional rate law
+    (section 3b); under johnson_cook the static curve is A + B k^n and yield_stress and
+    hardening are left out."""
+    _refuse_unknown(pl, {"yield_stress", "hardening", "rate"}, "material.plasticity")
+    rate = _parse_rate(pl["rate"]) if pl.get("rate") is not None else None
+    if rate is not None and rate.kind == "johnson_cook":
+        for key in ("yield_stress", "hardening"):
+            if key in pl:
+                raise SceneError(f"material.plasticity.{key} must be left out under "
+                                 f"johnson_cook (its static curve is A + B k^n)")
+        return Plasticity(yield_stress=rate.A, rate=rate)
+    sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
+    plast = Plasticity(yield_stress=sy0, rate=rate)
+    _parse_hardening(pl, plast, E, sy0)
+    return plast
+
+
 def _parse_material(data: dict) -> Material:
     """material: elastic constants and the optional plasticity."""
     m = _req(data, "material", "scene")
@@ -200,11 +293,7 @@ def _parse_material(data: dict) -> Material:
     E = _pos(_req(m, "youngs_modulus", "material"), "material.youngs_modulus")
     plast = None
     if m.get("plasticity") is not None:
-        pl = m["plasticity"]
-        _refuse_unknown(pl, {"yield_stress", "hardening"}, "material.plasticity")
-        sy0 = _pos(_req(pl, "yield_stress", "material.plasticity"), "material.plasticity.yield_stress")
-        plast = Plasticity(yield_stress=sy0)
-        _parse_hardening(pl, plast, E, sy0)
+        plast = _parse_plasticity(m["plasticity"], E)
     return Material(_pos(_req(m, "density", "material"), "material.density"), E, nu, plast)
 
 

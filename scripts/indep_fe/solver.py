@@ -23,6 +23,8 @@ ENERGY_COLUMNS = ["plate_kinetic_J", "impactor_kinetic_J", "strain_energy_J", "p
                   "hourglass_energy_J", "contact_energy_J", "external_work_J",
                   "energy_balance_error"]
 PROBE_SUFFIXES = ["sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa"]
+RATE_SUFFIX = "plastic_strain_rate_1_s"     # with a rate law (section 3b)
+TEMPERATURE_SUFFIX = "temperature_K"         # with its thermal part
 
 
 IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
@@ -39,14 +41,18 @@ class UnstableRun(RuntimeError):
     pass
 
 
-def history_columns(probe_names: list[str], impact: bool = True, surface: bool = False) -> list[str]:
+def history_columns(probe_names: list[str], impact: bool = True, surface: bool = False,
+                    rate: bool = False, thermal: bool = False) -> list[str]:
     """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns; the surface
-    coupling adds its two after them."""
+    coupling adds its two after them; a rate law adds each probe's plastic strain rate after
+    its von Mises stress, and `thermal` its temperature after that (section 3b)."""
     cols = ["time_s", "contact_force_N"] + (IMPACT_COLUMNS if impact else [])
     cols += SURFACE_COLUMNS if surface else []
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
     for p in probe_names:
         cols += [f"{p}_{s}" for s in PROBE_SUFFIXES]
+        cols += [f"{p}_{RATE_SUFFIX}"] if rate else []
+        cols += [f"{p}_{TEMPERATURE_SUFFIX}"] if thermal else []
     return cols + ENERGY_COLUMNS
 
 
@@ -129,7 +135,7 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
                 GT=G.T.tocsr() if G is not None else None, m_dof=m_dof,
                 inv_m=inv_m, s=pm.symmetry, w_flat=form.w.ravel(),
                 ngp=ngp, dt_plate=dt_plate, nose=nose)
-    return pl, MaterialModel(mat, nel * ngp), dt, dt_crit
+    return pl, MaterialModel(mat, nel * ngp, dt), dt, dt_crit
 
 
 def _probes(scene: Scene, pl: _Plate) -> tuple[list[str], list[int]]:
@@ -266,7 +272,8 @@ def _internal_forces(pl: _Plate, material: MaterialModel, u: np.ndarray):
     return stress, strain_energy, dwork, f_int, hg_energy
 
 
-def _summary(scene: Scene, pl: _Plate, body: _Impactor | SurfaceNose | None,
+def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
+             body: _Impactor | SurfaceNose | None,
              contact: _Contact, balance: _Balance, totals: dict, n: int, dt: float,
              dt_crit: float, stop_reason: str) -> dict:
     """summary.json (section 8)."""
@@ -303,6 +310,14 @@ def _summary(scene: Scene, pl: _Plate, body: _Impactor | SurfaceNose | None,
         "final_plastic_work_J": pl.s * totals["plastic_work"],
         "wall_time_s": time.perf_counter() - totals["wall0"],
     }
+    rate = material.rate
+    if rate is not None:
+        # section 8: per probe, over all steps; with thermal the hottest point at the end and
+        # the heat beta W_p (beta times the final plastic work)
+        out["max_plastic_strain_rate_1_s"] = totals["max_rate"]
+        if rate.thermal is not None:
+            out["max_temperature_K"] = float(rate.temperature().max())
+            out["heat_J"] = rate.thermal.taylor_quinney * pl.s * totals["plastic_work"]
     if surface:
         out["contact_step_factor"] = dt_crit / pl.dt_plate
         out["max_contact_half_width_m"] = totals["max_half_width"]
@@ -328,13 +343,17 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
                        or imp.force_node == imp.indentation_datum)
     every = scene.output.every      # None: a row every step
     surface = isinstance(body, SurfaceNose)
-    columns = history_columns(probe_names, impact=body is not None, surface=surface)
+    rate = material.rate
+    thermal = rate is not None and rate.thermal is not None
+    columns = history_columns(probe_names, impact=body is not None, surface=surface,
+                              rate=rate is not None, thermal=thermal)
     rows: list[list] = []
     s, ndof, pm = pl.s, 2 * pl.pm.n_nodes, pl.pm
     u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2}
     W_ext = 0.0
     totals = {"impulse": 0.0, "peak_F": 0.0, "max_down": 0.0, "plastic_work": 0.0,
               "max_vm": {p: 0.0 for p in probe_names}, "wall0": wall0,
+              "max_rate": {p: 0.0 for p in probe_names},
               "max_half_width": 0.0, "max_nodes": 0.0}
     k_row = 1
     next_row = steps_for(k_row * every, dt) if every is not None else 1
@@ -386,6 +405,9 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         vm = von_mises(stress[probe_pts]) if probe_pts else np.zeros(0)
         for name, val in zip(probe_names, vm):
             totals["max_vm"][name] = max(totals["max_vm"][name], float(val))
+        if rate is not None:
+            for name, p in zip(probe_names, probe_pts):
+                totals["max_rate"][name] = max(totals["max_rate"][name], float(rate.kdot[p]))
 
         if n == 0 or n >= next_row or last:
             row = [t, load]
@@ -398,6 +420,10 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             for pi, p in enumerate(probe_pts):
                 sx = stress[p]
                 row += [sx[0], sx[1], sx[3], sx[2], float(vm[pi])]
+                if rate is not None:
+                    row += [float(rate.kdot[p])]
+                if thermal:
+                    row += [float(rate.temperature()[p])]
             # the last entry holds the imbalance (J) until the run's energy scale is known
             row += [e_kin, e_imp, s * strain_energy, s * plastic_work, s * hg_energy, e_con,
                     W_ext, imbalance]
@@ -425,7 +451,8 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         contact.intervals[-1][1] = n * dt
     for row in rows:
         row[-1] = balance.ratio(row[-1])
-    summary = _summary(scene, pl, body, contact, balance, totals, n, dt, dt_crit, stop_reason)
+    summary = _summary(scene, pl, material, body, contact, balance, totals, n, dt, dt_crit,
+                       stop_reason)
     return Result(columns, rows, summary)
 
 
