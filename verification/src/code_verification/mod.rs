@@ -20,6 +20,7 @@ pub mod space_time;
 pub mod spring;
 pub mod static_pulse;
 pub mod thick_cylinder;
+pub mod viscoplastic_truss;
 
 use std::collections::BTreeMap;
 
@@ -28,7 +29,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 15] = [
+pub const NAMES: [&str; 16] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -44,6 +45,7 @@ pub const NAMES: [&str; 15] = [
     "column-impact",
     "hertz-line",
     "rate-strain-path",
+    "viscoplastic-truss",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -64,6 +66,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "column-impact" => column_impact::column_impact(p),
         "hertz-line" => hertz_line::hertz_line(p),
         "rate-strain-path" => rate_path::rate_strain_path(p),
+        "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
         _ => return None,
     })
 }
