@@ -9,7 +9,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use impact_solver::element::Formulation;
-use impact_solver::input::rate_law::{RateLaw, Thermal};
+use impact_solver::input::rate_law::{johnson_cook_42crmo4, RateLaw};
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
@@ -89,22 +89,13 @@ fn with_rate_law(mut scene: Scene, material: &str) -> Scene {
     if material.contains("cowper-symonds") {
         p.rate = Some(RateLaw::CowperSymonds { d: 40.4, q: 5.0 });
     } else if material.contains("johnson-cook") {
-        p.yield_stress = 806e6;
+        let ((a, b, n), law) = johnson_cook_42crmo4();
+        p.yield_stress = a;
         p.hardening = Hardening::Power {
-            coefficient: 614e6,
-            exponent: 0.168,
+            coefficient: b,
+            exponent: n,
         };
-        p.rate = Some(RateLaw::JohnsonCook {
-            c: 0.0089,
-            reference_rate: 1.0,
-            thermal: Some(Thermal {
-                initial_temperature: 293.15,
-                melting_temperature: 1813.15,
-                specific_heat: 473.0,
-                taylor_quinney: 0.9,
-                softening_exponent: 1.1,
-            }),
-        });
+        p.rate = Some(law);
     }
     scene
 }

@@ -166,6 +166,33 @@ def test_surface_contact_runs_from_a_dict_scene(small_scene, cli, tmp_path):
         impact.simulate(scene)
 
 
+def test_rate_laws_run_from_a_dict_scene(small_scene, cli, tmp_path):
+    """Cowper-Symonds and Johnson-Cook with heating from Python (a dict scene): the CLI's bits,
+    the rate and temperature columns and summary keys, and a bad parameter refused with its
+    field."""
+    scene = yaml.safe_load(small_scene.read_text())
+    plasticity = scene["material"].setdefault(
+        "plasticity", {"yield_stress": 250.0e6, "hardening": {"linear": 1.5e9}})
+    plasticity["rate"] = {"cowper_symonds": {"D": 40.4, "q": 5}}
+    run = impact.simulate(scene)
+    assert run.summary["max_plastic_strain_rate_1_s"]["A"] > 0
+    assert "A_plastic_strain_rate_1_s" in run.history
+    path = tmp_path / "cs.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    subprocess.run([cli, "simulate", path, "--out", tmp_path / "cli", "--quiet"], check=True)
+    assert without_timing(run.summary) == without_timing(read_summary(tmp_path / "cli" / "summary.json"))
+    scene["material"]["plasticity"] = {"rate": {"johnson_cook": {
+        "A": 250.0e6, "B": 300.0e6, "n": 0.3, "C": 0.0089, "reference_rate": 1.0, "m": 1.1,
+        "thermal": {"initial_temperature": 293.15, "melting_temperature": 1813.15,
+                    "specific_heat": 473.0, "taylor_quinney": 0.9}}}}
+    run = impact.simulate(scene)
+    assert run.summary["max_temperature_K"] > 293.15 and run.summary["heat_J"] > 0
+    assert "A_temperature_K" in run.history
+    scene["material"]["plasticity"]["rate"]["johnson_cook"]["thermal"]["melting_temperature"] = 200.0
+    with pytest.raises(impact.SceneError, match="thermal.melting_temperature"):
+        impact.simulate(scene)
+
+
 @pytest.mark.parametrize("to_folder", [False, True])
 def test_ctrl_c_stops_a_run_within_a_second(small_scene, tmp_path, to_folder):
     """A real SIGINT while a long run holds no GIL: KeyboardInterrupt within about a second

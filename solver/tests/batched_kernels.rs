@@ -13,7 +13,7 @@
 use std::path::Path;
 
 use impact_solver::element::Formulation;
-use impact_solver::input::rate_law::{RateLaw, Thermal};
+use impact_solver::input::rate_law::{johnson_cook_42crmo4, RateLaw};
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
@@ -115,26 +115,17 @@ fn fields(mesh: &PlateMesh, random: &mut Random, length: f64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// Johnson-Cook with heating (the DynELA Taylor bar's 42CrMo4, scaled to yield near the
-/// example plate's 250 MPa).
+/// Johnson-Cook with heating: the DynELA Taylor bar's 42CrMo4 law, its curve scaled to yield
+/// near the example plate's 250 MPa.
 fn johnson_cook_heating() -> Plasticity {
+    let ((_, _, n), law) = johnson_cook_42crmo4();
     Plasticity {
         yield_stress: 250e6,
         hardening: Hardening::Power {
             coefficient: 190e6,
-            exponent: 0.168,
+            exponent: n,
         },
-        rate: Some(RateLaw::JohnsonCook {
-            c: 0.0089,
-            reference_rate: 1.0,
-            thermal: Some(Thermal {
-                initial_temperature: 293.15,
-                melting_temperature: 1813.15,
-                specific_heat: 473.0,
-                taylor_quinney: 0.9,
-                softening_exponent: 1.1,
-            }),
-        }),
+        rate: Some(law),
     }
 }
 

@@ -130,6 +130,28 @@ const FRACTION: Rule = Rule {
 /// Johnson-Cook's static curve `A + B k^n`: (A Pa, B Pa, n).
 pub type PowerCurve = (f64, f64, f64);
 
+/// The 42CrMo4 steel of DynELA's Taylor bar sample (Pantale, DynELA v4 documentation,
+/// "DynELA impact sample cases", its table of Johnson-Cook parameters: A = 806 MPa,
+/// B = 614 MPa, n = 0.168, C = 0.0089, m = 1.1, reference rate 1 1/s, T0 = 20 C,
+/// Tm = 1540 C, c = 460 J/(kg K), Taylor-Quinney 0.9; rho = 7830 kg/m^3, E = 206.9 GPa):
+/// its static curve and its law with heating.
+pub fn johnson_cook_42crmo4() -> (PowerCurve, RateLaw) {
+    (
+        (806e6, 614e6, 0.168),
+        RateLaw::JohnsonCook {
+            c: 0.0089,
+            reference_rate: 1.0,
+            thermal: Some(Thermal {
+                initial_temperature: 293.15,
+                melting_temperature: 1813.15,
+                specific_heat: 460.0,
+                taylor_quinney: 0.9,
+                softening_exponent: 1.1,
+            }),
+        },
+    )
+}
+
 impl Validator<'_> {
     /// The law of `rate:`, and for Johnson-Cook its static curve.
     pub(super) fn rate_law(&self, r: &RateFile) -> Result<(RateLaw, Option<PowerCurve>)> {
