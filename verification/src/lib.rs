@@ -27,6 +27,7 @@ pub mod report;
 pub mod report_paper;
 pub mod report_plots;
 pub mod report_results;
+pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
 pub mod snapshot;
