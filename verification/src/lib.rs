@@ -31,4 +31,7 @@ pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
 pub mod snapshot;
+pub mod uq_distribution;
+pub mod uq_report;
+pub mod uq_study;
 pub mod verdict;
