@@ -27,54 +27,7 @@ use serde::{Deserialize, Serialize};
 use serde_saphyr::Spanned;
 
 use crate::case::{parse_located, Loc};
-
-#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Uniform {
-    pub lower: f64,
-    pub upper: f64,
-}
-
-#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Normal {
-    pub mean: f64,
-    pub std: f64,
-}
-
-/// A lognormal distribution by its mean and coefficient of variation (std / mean).
-#[derive(Debug, Clone, Copy, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Lognormal {
-    pub mean: f64,
-    pub cov: f64,
-}
-
-#[derive(Debug, Clone, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Truncated {
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub normal: Option<Normal>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lognormal: Option<Lognormal>,
-    pub lower: f64,
-    pub upper: f64,
-}
-
-/// One uncertain input: exactly one distribution, and where it comes from.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct InputFile {
-    #[serde(default)]
-    pub uniform: Option<Uniform>,
-    #[serde(default)]
-    pub normal: Option<Normal>,
-    #[serde(default)]
-    pub lognormal: Option<Lognormal>,
-    #[serde(default)]
-    pub truncated: Option<Truncated>,
-    pub source: Option<Spanned<String>>,
-}
+use crate::uq_distribution::{Input, InputFile};
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -145,17 +98,6 @@ pub struct Study {
     pub convergence: Convergence,
     pub mesh_levels: Vec<f64>,
     pub outputs: BTreeMap<String, OutputFile>,
-}
-
-#[derive(Debug, Clone, Serialize)]
-pub struct Input {
-    pub key: String,
-    /// `uniform`, `normal`, `lognormal` or `truncated`, and its parameters.
-    pub kind: &'static str,
-    pub distribution: serde_json::Value,
-    pub source: String,
-    /// Where it is declared, `file:line:col`.
-    pub at: String,
 }
 
 /// `loc: field = value: allowed`.
