@@ -9,7 +9,7 @@
 # Order: first the untimed work side by side on the cores (the matrix, `impact verify`, beside
 # the stability benchmark and the work-precision references, `impact-bench references`), then
 # the timed benchmarks alone (throughput, work-precision: nothing else of this job runs while
-# they time), then the report (`impact report`). The benchmarks' results are those of
+# they time), then the uncertainty studies (scripts/uq-study.py), then the report (`impact report`). The benchmarks' results are those of
 # `impact-bench all`: work-precision reads the references this binary wrote (the same bits).
 # Exit status: verify's (0 when every failing check is a declared known failure and none
 # passes unexpectedly, 1 on an unexpected FAIL or an XPASS, 2 bad input), written after the
@@ -64,6 +64,21 @@ bench throughput
 bench work-precision
 if [[ $bench_status -ne 0 ]]; then
     echo "main-job: the benchmarks failed (status $bench_status); the report shows what they wrote" >&2
+fi
+
+# The uncertainty studies (issue 27): the paper case's Table 1 rows at the sample size that
+# converges (verification/uq/paper-{plastic,elastic}.yaml), after the timed benchmarks so that
+# they do not disturb them; the Python package is built into the venv first (maturin reuses
+# target/release). A failed study leaves the report's section saying so; the job's status
+# is then at least 1.
+echo "== uncertainty studies: scripts/uq-study.py --out $out/uq"
+uq_status=0
+{ scripts/setup-venv.sh && PATH="$PWD/.venv/bin:$PATH" .venv/bin/pip install --quiet --no-build-isolation ./python \
+    && .venv/bin/python scripts/uq-study.py --out "$out/uq" --jobs "$(nproc)"; } || uq_status=$?
+if [[ $uq_status -ne 0 ]]; then
+    echo "main-job: the uncertainty studies failed (status $uq_status)" >&2
+    rm -f "$out/uq/uq.md"
+    [[ $bench_status -ne 0 ]] || bench_status=1
 fi
 
 echo "== report: $out/index.html, $out/report.md"

@@ -9,11 +9,13 @@
 //! - [`modal_beam`]: the same beam under a rectangular pulse, by modal superposition.
 //! - [`timoshenko_modal`]: natural frequencies of a Timoshenko beam (clamped or pinned ends).
 //! - [`hertz_line`]: the paper's line-contact law, eq. (4), in any consistent units.
+//! - [`rigid_plastic`]: rigid-plastic bounds of a clamped beam struck by a mass (Jones).
 
 pub mod beam;
 pub mod hertz_line;
 pub mod modal_beam;
 pub mod plane_wave;
+pub mod rigid_plastic;
 pub mod timoshenko_modal;
 
 /// `Ok(x)` when `x` is finite and > 0, else the message naming `what`.

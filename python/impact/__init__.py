@@ -10,6 +10,8 @@ names its unit (``time_s``, ``contact_force_N``, ``impulse_Ns``, ...).
 - :func:`sweep` runs one scene under many overrides (dotted scene keys) on a local pool or a
   Dask cluster and returns one row per run.
 - :func:`verify` runs the verification matrix and returns its results as data.
+- :func:`uq` runs an uncertainty study from its declaration (distributions of the inputs,
+  Sobol' sampling through :func:`sweep`, Sobol' indices, the V&V 20 inputs).
 
 Scene errors raise :class:`SceneError` with the message of the ``impact`` command
 (``file:line:col: field = value: what is allowed``); a run that cannot go on raises
@@ -20,16 +22,20 @@ from __future__ import annotations
 from ._impact import TIMING_KEYS, RunError, SceneError, VerifyError
 from ._run import Run, simulate
 from ._sweep import sweep
+from ._uq import StudyRunError, UQResult, uq
 from ._verify import Verification, verify
 
 __all__ = [
     "Run",
     "RunError",
     "SceneError",
+    "StudyRunError",
     "TIMING_KEYS",
+    "UQResult",
     "Verification",
     "VerifyError",
     "simulate",
     "sweep",
+    "uq",
     "verify",
 ]

@@ -6,6 +6,7 @@
 
 mod errors;
 mod simulate;
+mod uq;
 mod verify;
 
 use pyo3::prelude::*;
@@ -19,6 +20,9 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::read_scene, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(verify::verify, m)?)?;
+    m.add_function(wrap_pyfunction!(uq::read_study, m)?)?;
+    m.add_function(wrap_pyfunction!(uq::gci, m)?)?;
+    m.add_function(wrap_pyfunction!(uq::rigid_plastic, m)?)?;
     m.add(
         "TIMING_KEYS",
         impact_verification::jobs::TIMING_KEYS.to_vec(),

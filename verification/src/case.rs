@@ -282,6 +282,10 @@ pub struct MeasureFile {
     /// numerator / denominator.
     #[serde(default)]
     pub ratio: Option<Vec<MeasureFile>>,
+    /// `[value, lower, upper]`: where the value lies in the band, `(v - lo) / (hi - lo)`
+    /// (0 at the lower edge, 1 at the upper; inside: within 0.5 +- 0.5).
+    #[serde(default)]
+    pub band: Option<Vec<MeasureFile>>,
     /// Observed order of convergence over a series.
     #[serde(default)]
     pub order: Option<SeriesQuantity>,
@@ -303,7 +307,7 @@ pub struct MeasureFile {
 
 /// The message for a measure that does not name exactly one selector.
 pub const ONE_SELECTOR: &str =
-    "a measure needs exactly one of metric, at, extreme, error, ratio, order, gci, change";
+    "a measure needs exactly one of metric, at, extreme, error, ratio, band, order, gci, change";
 
 impl MeasureFile {
     /// How many of the value selectors (metric, at, extreme, ...) are given; exactly one is valid.
@@ -314,6 +318,7 @@ impl MeasureFile {
             self.extreme.is_some(),
             self.error.is_some(),
             self.ratio.is_some(),
+            self.band.is_some(),
             self.order.is_some(),
             self.gci.is_some(),
             self.change.is_some(),
@@ -578,7 +583,16 @@ impl Case {
 
 /// Parses a case.yaml; `path` names it in messages.
 pub fn parse_case(text: &str, path: &Path) -> Result<CaseFile, CaseError> {
-    serde_saphyr::from_str::<CaseFile>(text).map_err(|e| {
+    parse_located(text, path)
+}
+
+/// Parses YAML text into `T`; an error names the place (`path:line:column`) and the parser's
+/// message without the location it repeats.
+pub fn parse_located<T: serde::de::DeserializeOwned>(
+    text: &str,
+    path: &Path,
+) -> Result<T, CaseError> {
+    serde_saphyr::from_str::<T>(text).map_err(|e| {
         let (line, column) = e
             .location()
             .map(|l| (l.line(), l.column()))

@@ -325,6 +325,16 @@ pub fn measure_value(
         let a = measure_value(&inherit(&r[0], m), ctx, ref_history)?;
         let b = measure_value(&inherit(&r[1], m), ctx, ref_history)?;
         a / b
+    } else if let Some(b) = &m.band {
+        let [v, lo, hi] = b.as_slice() else {
+            return Err("band needs [value, lower, upper]".into());
+        };
+        let at = |x: &MeasureFile| measure_value(&inherit(x, m), ctx, ref_history);
+        let (v, lo, hi) = (at(v)?, at(lo)?, at(hi)?);
+        if !(hi > lo) {
+            return Err(format!("band: upper {hi:e} is not above lower {lo:e}"));
+        }
+        (v - lo) / (hi - lo)
     } else if let Some(q) = &m.order {
         series_order(q, ctx)?.finest_order()
     } else if let Some(q) = &m.gci {

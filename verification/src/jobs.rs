@@ -191,6 +191,9 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             metrics.insert(k.into(), v);
         }
     }
+    for (k, v) in crate::rigid_plastic::metrics(scene, s.final_energy.plastic_work) {
+        metrics.insert(k.into(), v);
+    }
     if let Some((ratio, eqps)) = observer_bound {
         metrics.insert("stress_flow_ratio_max".into(), ratio);
         metrics.insert("eqps_max".into(), eqps);

@@ -383,9 +383,16 @@ fn lint_measure(
             out.push(format!("no scene {s:?} in this case"));
         }
     }
-    if let Some(r) = &m.ratio {
-        if r.len() != 2 {
-            out.push("ratio needs [numerator, denominator]".into());
+    let parts = [
+        (&m.ratio, 2, "ratio needs [numerator, denominator]"),
+        (&m.band, 3, "band needs [value, lower, upper]"),
+    ];
+    if let Some((r, n, message)) = parts
+        .iter()
+        .find_map(|(r, n, t)| r.as_ref().map(|r| (r, *n, *t)))
+    {
+        if r.len() != n {
+            out.push(message.into());
         }
         for x in r {
             lint_measure(x, has_default || m.scene.is_some(), scenes, series, out);

@@ -157,8 +157,12 @@ pub fn write_report_with(
     });
     let bench = crate::bench_report::context(bench_dir.as_deref(), out);
     let evidence = crate::evidence_report::context(&results, &repo.root, out);
+    let uq_dir = [from.join("uq"), out.join("uq")]
+        .into_iter()
+        .find(|d| d.is_dir());
     let ctx = serde_json::json!({
         "evidence": evidence,
+        "uq": crate::uq_report::context(uq_dir.as_deref(), out),
         "changes": crate::baseline::report_context(from, out),
         "recon": recon,
         "bench": bench,
