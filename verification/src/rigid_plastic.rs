@@ -20,7 +20,9 @@ pub const SCENE_KEYS: [&str; 6] = [
 ];
 
 /// The slope of the flow stress against the plastic strain, Pa: `E E_t / (E - E_t)` for
-/// linear hardening (E_t the tangent of the uniaxial curve), the first segment's for a table.
+/// linear hardening (E_t the tangent of the uniaxial curve), the first segment's for a table,
+/// the secant over the first 1 % of plastic strain for a power law (`B k^n`, whose tangent is
+/// infinite at 0). The rate law, if any, is left out: the bands are the static ones.
 fn hardening_modulus(h: &Hardening, youngs_modulus: f64) -> f64 {
     match h {
         Hardening::Linear { tangent_modulus } => {
@@ -30,6 +32,10 @@ fn hardening_modulus(h: &Hardening, youngs_modulus: f64) -> f64 {
             [(e0, s0), (e1, s1), ..] if e1 > e0 => (s1 - s0) / (e1 - e0),
             _ => 0.0,
         },
+        Hardening::Power {
+            coefficient,
+            exponent,
+        } => coefficient * 0.01f64.powf(*exponent) / 0.01,
     }
 }
 
