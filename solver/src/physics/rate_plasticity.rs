@@ -170,15 +170,17 @@ impl ViscoPlastic {
             RateLaw::CowperSymonds { d, q: exponent } => {
                 let scale = d * self.dt;
                 let power = Power::of(exponent);
+                let power_less = Power::of(exponent - 1.0);
                 // x at which the rate factor alone reaches q: the residual is negative there.
                 let hi = R::select(running, q / static_flow - 1.0, R::splat(1.0));
                 let x = solve_decreasing((zero, hi), running, q * RESIDUAL_TOLERANCE, |x: R| {
-                    let dk = power.of_lanes(x) * scale;
+                    // dk = D dt x^q and d dk / d x = q D dt x^(q - 1), without a division.
+                    let lower = power_less.of_lanes(x);
+                    let dk = lower * x * scale;
                     let (s, h) = self.curve.stress_and_slope(k + dk);
                     let factor = x + 1.0;
                     let f = q - dk * three_mu - s * factor;
-                    // d dk / d x = exponent dk / x
-                    let ddk = dk * exponent / x;
+                    let ddk = lower * (exponent * scale);
                     (f, R::splat(0.0) - (h * factor + three_mu) * ddk - s)
                 });
                 R::select(running, power.of_lanes(x) * scale, zero)
@@ -216,7 +218,7 @@ enum Power {
 
 impl Power {
     fn of(p: f64) -> Power {
-        if p.fract() == 0.0 && (1.0..=32.0).contains(&p) {
+        if p.fract() == 0.0 && (0.0..=32.0).contains(&p) {
             Power::Whole(p as u32)
         } else {
             Power::Real(p)
