@@ -67,7 +67,11 @@ impl Path {
 /// The law of the block: `law` (`cowper-symonds` | `johnson-cook`) with the parameters
 /// `D`, `q` (defaults 40.4 1/s, 5) or `C`, `reference_rate` (0.0089, 1 1/s).
 fn law(p: &Params) -> Result<RateLaw, String> {
-    match p.get("law").and_then(Value::as_str).unwrap_or("cowper-symonds") {
+    match p
+        .get("law")
+        .and_then(Value::as_str)
+        .unwrap_or("cowper-symonds")
+    {
         "cowper-symonds" => Ok(RateLaw::CowperSymonds {
             d: param(p, "D", 40.4)?,
             q: param(p, "q", 5.0)?,
@@ -77,7 +81,9 @@ fn law(p: &Params) -> Result<RateLaw, String> {
             reference_rate: param(p, "reference_rate", 1.0)?,
             thermal: None,
         }),
-        other => Err(format!("param law: {other}, expected cowper-symonds or johnson-cook")),
+        other => Err(format!(
+            "param law: {other}, expected cowper-symonds or johnson-cook"
+        )),
     }
 }
 
@@ -137,7 +143,10 @@ fn march<F: Formulation>(
     let coords = &mesh.mesh.coords;
     let ndof = 2 * coords.len();
     let mut u = vec![0.0; ndof];
-    let mut v: Vec<f64> = coords.iter().flat_map(|&x| path.velocity(rate, x)).collect();
+    let mut v: Vec<f64> = coords
+        .iter()
+        .flat_map(|&x| path.velocity(rate, x))
+        .collect();
     let mut f_int = vec![0.0; ndof];
     let mut rows = Vec::new();
     let every = (steps / 400).max(1);
@@ -168,23 +177,34 @@ fn march<F: Formulation>(
         .flat_map(|e| (0..F::POINTS).map(move |p| (e, p)))
         .map(|(e, p)| von_mises(&model.point_stress(e, p, &u)))
         .collect();
-    let spread = q.iter().cloned().fold(f64::MIN, f64::max) - q.iter().cloned().fold(f64::MAX, f64::min);
+    let spread =
+        q.iter().cloned().fold(f64::MIN, f64::max) - q.iter().cloned().fold(f64::MAX, f64::min);
     Run { rows, spread }
 }
 
 pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     let law = law(p)?;
-    let path = match p.get("path").and_then(Value::as_str).unwrap_or("uniaxial-strain") {
+    let path = match p
+        .get("path")
+        .and_then(Value::as_str)
+        .unwrap_or("uniaxial-strain")
+    {
         "uniaxial-strain" => Path::UniaxialStrain,
         "simple-shear" => Path::SimpleShear,
-        other => return Err(format!("param path: {other}, expected uniaxial-strain or simple-shear")),
+        other => {
+            return Err(format!(
+                "param path: {other}, expected uniaxial-strain or simple-shear"
+            ))
+        }
     };
     let sigma0 = param(p, "yield_stress", 250e6)?;
     // The model's yield stress and law (a negative control may set a wrong one).
     let model_sigma0 = param(p, "model_yield_stress", sigma0)?;
     let model_law = match p.get("model_law") {
         // D = 1e12 1/s: an overstress of (kdot / D)^(1/5) < 0.6 %, nearly rate-independent.
-        Some(Value::String(s)) if s == "rate-independent" => RateLaw::CowperSymonds { d: 1e12, q: 5.0 },
+        Some(Value::String(s)) if s == "rate-independent" => {
+            RateLaw::CowperSymonds { d: 1e12, q: 5.0 }
+        }
         _ => law,
     };
     let rates: Vec<f64> = match p.get("rates") {
@@ -202,12 +222,13 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     let kind = element(p)?;
     let elastic = Elastic::new(STEEL.0, STEEL.1);
     let mut m = BTreeMap::new();
-    let mut history = impact_solver::History {
-        columns: ["time_s", "rate_1_s", "von_mises_Pa", "closed_form_Pa", "plastic_rate_1_s"]
-            .map(String::from)
-            .to_vec(),
-        values: Vec::new(),
-    };
+    // One row per strain of a common grid (in the `time_s` column, the plots' x axis), the
+    // runs' columns side by side: each run interpolated to the grid.
+    const GRID: usize = 400;
+    let mut columns = vec!["time_s".to_string()];
+    let mut per_rate: Vec<Vec<f64>> = vec![(0..=GRID)
+        .map(|j| strain * j as f64 / GRID as f64)
+        .collect()];
     for &rate in &rates {
         let any = AnyFormulation::new(kind, &mesh.mesh, 1.0, 0.05, &elastic)
             .map_err(|e| e.to_string())?;
@@ -220,15 +241,45 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
         m.insert(format!("flow_stress_{tag}_Pa"), last[1]);
         m.insert(format!("flow_stress_closed_form_{tag}_Pa"), closed);
         m.insert(format!("overstress_ratio_{tag}"), last[1] / sigma0 - 1.0);
-        m.insert(format!("overstress_ratio_closed_form_{tag}"), closed / sigma0 - 1.0);
+        m.insert(
+            format!("overstress_ratio_closed_form_{tag}"),
+            closed / sigma0 - 1.0,
+        );
         m.insert(format!("plastic_rate_{tag}_1_s"), last[2]);
         m.insert(format!("plastic_rate_closed_form_{tag}_1_s"), kdot);
         m.insert(format!("stress_spread_{tag}_Pa"), run.spread);
-        for r in &run.rows {
-            history.values.extend([r[0], rate, r[1], closed, r[2]]);
+        let strains: Vec<f64> = run.rows.iter().map(|r| r[0] * rate).collect();
+        for (c, name) in [(1, "von_mises"), (2, "plastic_rate")] {
+            let unit = if c == 1 { "Pa" } else { "1_s" };
+            columns.push(format!("{name}_r{rate}_{unit}"));
+            per_rate.push(
+                per_rate[0]
+                    .iter()
+                    .map(|&e| interpolate(&strains, &run.rows, c, e))
+                    .collect(),
+            );
         }
+        columns.push(format!("closed_form_r{rate}_Pa"));
+        per_rate.push(vec![closed; GRID + 1]);
     }
-    Ok(with_history(m, history))
+    let values = (0..=GRID)
+        .flat_map(|j| per_rate.iter().map(move |col| col[j]))
+        .collect();
+    Ok(with_history(m, impact_solver::History { columns, values }))
+}
+
+/// Column `c` of `rows` at strain `e`, linear between the rows' `strains` (held at the ends).
+fn interpolate(strains: &[f64], rows: &[[f64; 3]], c: usize, e: f64) -> f64 {
+    let i = strains
+        .partition_point(|&s| s < e)
+        .clamp(1, strains.len() - 1);
+    let (e0, e1) = (strains[i - 1], strains[i]);
+    let w = if e1 > e0 {
+        ((e - e0) / (e1 - e0)).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    rows[i - 1][c] + w * (rows[i][c] - rows[i - 1][c])
 }
 
 #[cfg(test)]

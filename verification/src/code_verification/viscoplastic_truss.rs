@@ -88,7 +88,10 @@ fn ode_rate(t: &Truss, uniaxial_strain: bool, mass: f64, y: [f64; 5]) -> [f64; 5
     let e = y[0] / t.length;
     let el = Elastic::new(t.youngs_modulus, t.poisson_ratio);
     let (sigma, s) = if uniaxial_strain {
-        (el.p_modulus() * e - 2.0 * el.mu * y[2], 2.0 * el.mu * e - 3.0 * el.mu * y[2])
+        (
+            el.p_modulus() * e - 2.0 * el.mu * y[2],
+            2.0 * el.mu * e - 3.0 * el.mu * y[2],
+        )
     } else {
         let sigma = t.youngs_modulus * (e - y[2]);
         (sigma, sigma)
@@ -98,7 +101,13 @@ fn ode_rate(t: &Truss, uniaxial_strain: bool, mass: f64, y: [f64; 5]) -> [f64; 5
     // Plastic work rate per volume: the von Mises stress times the equivalent plastic rate
     // (uniaxial stress: sigma e_p'; uniaxial strain: |s| |e_p'|, since dk = |de_p|).
     let work_rate = s.abs() * ep_rate.abs() * t.area * t.length;
-    [y[1], -t.area * sigma / mass, ep_rate, ep_rate.abs(), work_rate]
+    [
+        y[1],
+        -t.area * sigma / mass,
+        ep_rate,
+        ep_rate.abs(),
+        work_rate,
+    ]
 }
 
 /// The bar's stress (Pa) in state `y`.
@@ -144,7 +153,12 @@ impl Follower {
 }
 
 /// The ODE's half cycle by RK4 in steps of `h` s (the striker plus `extra_mass` kg).
-fn ode_half_cycle(t: &Truss, uniaxial_strain: bool, extra_mass: f64, h: f64) -> Result<HalfCycle, String> {
+fn ode_half_cycle(
+    t: &Truss,
+    uniaxial_strain: bool,
+    extra_mass: f64,
+    h: f64,
+) -> Result<HalfCycle, String> {
     let mass = t.mass + extra_mass;
     let f = |y: [f64; 5]| ode_rate(t, uniaxial_strain, mass, y);
     let add = |y: [f64; 5], k: [f64; 5], c: f64| std::array::from_fn(|i| y[i] + c * k[i]);
@@ -166,7 +180,11 @@ fn ode_half_cycle(t: &Truss, uniaxial_strain: bool, extra_mass: f64, h: f64) -> 
 }
 
 /// The solver's strip: its half cycle and the history `(t, stress, velocity)`.
-fn strip_half_cycle(t: &Truss, nx: usize, law: RateLaw) -> Result<(HalfCycle, Vec<[f64; 3]>), String> {
+fn strip_half_cycle(
+    t: &Truss,
+    nx: usize,
+    law: RateLaw,
+) -> Result<(HalfCycle, Vec<[f64; 3]>), String> {
     let side = t.area.sqrt();
     let mesh = mapped_mesh(t.length, side, nx, 2, 0.0)?;
     let material = ViscoPlastic::new(&Material {
@@ -187,9 +205,15 @@ fn strip_half_cycle(t: &Truss, nx: usize, law: RateLaw) -> Result<(HalfCycle, Ve
     let dt = 0.8 * model.critical_time_step(t.density);
     model.material.set_time_step(dt);
     let x: Vec<f64> = mesh.mesh.coords.iter().map(|c| c[0]).collect();
-    let tied: Vec<usize> = (0..x.len()).filter(|&i| (x[i] - t.length).abs() < 1e-12).collect();
+    let tied: Vec<usize> = (0..x.len())
+        .filter(|&i| (x[i] - t.length).abs() < 1e-12)
+        .collect();
     let mass = t.mass + tied.iter().map(|&i| model.mass[i]).sum::<f64>();
-    let (mut u, mut v, mut f_int) = (vec![0.0; 2 * x.len()], vec![0.0; 2 * x.len()], vec![0.0; 2 * x.len()]);
+    let (mut u, mut v, mut f_int) = (
+        vec![0.0; 2 * x.len()],
+        vec![0.0; 2 * x.len()],
+        vec![0.0; 2 * x.len()],
+    );
     for &i in &tied {
         v[2 * i] = -t.velocity; // toward the fixed end: compression
     }
@@ -261,7 +285,9 @@ pub fn viscoplastic_truss(p: &Params) -> Result<RunData, String> {
     let (solver, rows) = strip_half_cycle(&t, nx, model_law)?;
     insert(&mut m, "strip_solver", &solver);
     let history = impact_solver::History {
-        columns: ["time_s", "stress_Pa", "mass_velocity_mps"].map(String::from).to_vec(),
+        columns: ["time_s", "stress_Pa", "mass_velocity_mps"]
+            .map(String::from)
+            .to_vec(),
         values: rows.iter().flatten().copied().collect(),
     };
     Ok(with_history(m, history))
