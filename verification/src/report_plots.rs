@@ -130,11 +130,10 @@ fn series_values_plot(p: &serde_json::Value, all: &serde_json::Value) -> Option<
             .filter_map(|x| x.as_f64())
             .collect();
         let values = sd["metrics"][metric].as_array()?;
-        let coarsest = levels.iter().copied().fold(f64::INFINITY, f64::min);
-        let pts = levels
-            .iter()
+        let pts = log_relative_sizes(&levels)
+            .into_iter()
             .zip(values)
-            .filter_map(|(l, v)| Some(((coarsest / l).log10(), v.as_f64()?)))
+            .filter_map(|(x, v)| Some((x, v.as_f64()?)))
             .collect();
         series.push((name.to_string(), pts, false));
     }
@@ -143,6 +142,14 @@ fn series_values_plot(p: &serde_json::Value, all: &serde_json::Value) -> Option<
         title.to_string(),
         svg_plot(title, x, Axis::new(&label, unit), &series),
     ))
+}
+
+/// log10 of each level's element size (or step) over the coarsest level's: 0 at the coarsest,
+/// negative finer. The levels are refinement factors of the scene's mesh (1 = the scene's
+/// own), which need not be the coarsest.
+fn log_relative_sizes(levels: &[f64]) -> Vec<f64> {
+    let coarsest = levels.iter().copied().fold(f64::INFINITY, f64::min);
+    levels.iter().map(|l| (coarsest / l).log10()).collect()
 }
 
 /// The x axis of a convergence plot: log10 of the refined size over the coarsest one.
@@ -187,7 +194,7 @@ fn convergence_plots(name: &str, sd: &serde_json::Value) -> Vec<(String, String)
             continue;
         }
         let (label, unit) = column_axis(metric);
-        let log_h: Vec<f64> = levels.iter().map(|l| (1.0 / l).log10()).collect();
+        let log_h = log_relative_sizes(&levels);
         let x = Axis::new(x_name, "");
         // The values themselves, when no order can be read from them.
         let values_plot = |title: String| {
@@ -266,6 +273,14 @@ mod tests {
             .1
             .contains("log10 (time step / coarsest time step)"));
         assert!(!plots[0].1.contains("h_base"));
+    }
+
+    #[test]
+    fn sizes_are_relative_to_the_coarsest_level_not_the_scene_mesh() {
+        let x = log_relative_sizes(&[0.5, 1.0, 2.0, 4.0]);
+        assert_eq!(x[0], 0.0);
+        assert!(x.iter().all(|&v| v <= 0.0), "{x:?}");
+        assert!((x[3] + 8f64.log10()).abs() < 1e-15, "{x:?}");
     }
 
     #[test]
