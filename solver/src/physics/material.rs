@@ -259,8 +259,9 @@ pub trait FlowLaw<R: Real> {
     /// Flow stress at equivalent plastic strain `k`, Pa.
     fn flow_stress(&self, k: R) -> R;
     /// The increment `dk` solving `q - 3 mu dk - sigma_y(k + dk) = 0` (`q`: trial von Mises
-    /// stress, Pa; `three_mu`: 3 mu, Pa).
-    fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R;
+    /// stress, Pa; `flow_at_k`: [`FlowLaw::flow_stress`] at `k`, which the caller has already
+    /// computed, Pa; `three_mu`: 3 mu, Pa).
+    fn plastic_increment(&self, q: R, k: R, flow_at_k: R, three_mu: f64) -> R;
     /// The plastic work density of the increment `dk` from `k_new - dk` to `k_new` (J/m^3),
     /// `sy_old` the flow stress at its start and `q_new` the returned von Mises stress (Pa):
     /// the trapezoid of the flow curve.
@@ -286,7 +287,7 @@ impl<R: Real> FlowLaw<R> for LinearHardening {
     }
     /// [`FlowCurve`]'s piece by piece solve on its one piece, in its order.
     #[inline(always)]
-    fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R {
+    fn plastic_increment(&self, q: R, k: R, _flow_at_k: R, three_mu: f64) -> R {
         let dk = R::splat(0.0);
         let sy = self.flow_stress(k + dk);
         let x = (q - dk * three_mu - sy) * (1.0 / (three_mu + self.modulus));
@@ -300,7 +301,7 @@ impl FlowLaw<f64> for FlowCurve {
         self.piece(k).0
     }
     /// Piece by piece of the curve.
-    fn plastic_increment(&self, q: f64, k: f64, three_mu: f64) -> f64 {
+    fn plastic_increment(&self, q: f64, k: f64, _flow_at_k: f64, three_mu: f64) -> f64 {
         let mut dk = 0.0;
         loop {
             let (sy, h, next) = self.piece(k + dk);
@@ -392,7 +393,7 @@ pub(crate) fn radial_return<R: Real, H: FlowLaw<R>>(
         // does not yield, must not divide 0 by 0 below. A yielding lane has q > 0.)
         let q = q2.sqrt().max(f64::MIN_POSITIVE);
         // (q2 > sy^2 and q <= sy can both hold within an ulp: never a negative increment.)
-        let dk = flow.plastic_increment(q, k_old, 3.0 * mu).max(0.0);
+        let dk = flow.plastic_increment(q, k_old, sy_old, 3.0 * mu).max(0.0);
         // Plastic strain increment dk * 3/2 dev/q (tensor shear). No select between the
         // yielding and the elastic values: a lane that does not yield has q <= sy
         // (sqrt(fl(sy^2)) = sy), so dk = 0, r = 0 and scale = 1 exactly, and p, dev and q2

@@ -136,11 +136,6 @@ impl ViscoPlastic {
         })
     }
 
-    /// The run's time step, s.
-    pub fn time_step(&self) -> f64 {
-        self.dt
-    }
-
     /// Johnson-Cook's `1 - T*^m` per lane of the temperature rise `heating` (K); 1 without
     /// heating.
     #[inline(always)]
@@ -160,10 +155,10 @@ impl ViscoPlastic {
     }
 
     /// The increment `dk` of the rate-dependent consistency condition (module documentation)
-    /// per lane; 0 where the trial stress `q` (Pa) does not exceed the static flow stress.
+    /// per lane; 0 where the trial stress `q` (Pa) does not exceed `static_flow`, the static
+    /// flow stress at `k` and the point's temperature (Pa).
     #[inline(always)]
-    fn increment<R: Real>(&self, q: R, k: R, three_mu: f64, softening: R) -> R {
-        let static_flow = self.curve.stress(k) * softening;
+    fn increment<R: Real>(&self, q: R, k: R, static_flow: R, three_mu: f64, softening: R) -> R {
         let running = q.gt(static_flow);
         let zero = R::splat(0.0);
         match self.law {
@@ -295,8 +290,9 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
         self.model.curve.stress(k) * self.softening
     }
     #[inline(always)]
-    fn plastic_increment(&self, q: R, k: R, three_mu: f64) -> R {
-        self.model.increment(q, k, three_mu, self.softening)
+    fn plastic_increment(&self, q: R, k: R, flow_at_k: R, three_mu: f64) -> R {
+        self.model
+            .increment(q, k, flow_at_k, three_mu, self.softening)
     }
     /// `q_new dk`: the returned stress (the dynamic flow stress) on the increment, the
     /// backward-Euler dissipation.

@@ -274,37 +274,40 @@ impl<'s> Recorder<'s> {
             *max = [max[0].max(patch[0]), max[1].max(patch[1])];
         }
         let want_row = self.rows.due(n, dt) || last;
+        let row = &mut self.row;
+        row.clear();
+        if want_row {
+            row.push(at.t);
+            row.push(at.force);
+            if let Some(impactor) = at.impactor {
+                row.extend(impactor);
+            }
+            if let Some(patch) = at.patch {
+                row.extend(patch);
+            }
+            row.extend([top, mid, bottom]);
+        }
+        // Each probe read once: its maxima every step, its columns when a row is due.
         for (k, p) in self.probes.iter().enumerate() {
             let r = read(p);
+            let vm = von_mises(&r.stress);
             let max = &mut self.totals.max_von_mises[k].1;
-            *max = max.max(von_mises(&r.stress));
+            *max = max.max(vm);
             if let (Some(rate), Some(max)) = (
                 r.plastic_strain_rate,
                 self.totals.max_plastic_strain_rate.get_mut(k),
             ) {
                 max.1 = max.1.max(rate);
             }
+            if want_row {
+                let st = r.stress;
+                row.extend([st[0], st[1], st[3], st[2], vm]);
+                row.extend(r.plastic_strain_rate);
+                row.extend(r.temperature);
+            }
         }
         if !want_row {
             return Ok(());
-        }
-        let row = &mut self.row;
-        row.clear();
-        row.push(at.t);
-        row.push(at.force);
-        if let Some(impactor) = at.impactor {
-            row.extend(impactor);
-        }
-        if let Some(patch) = at.patch {
-            row.extend(patch);
-        }
-        row.extend([top, mid, bottom]);
-        for p in &self.probes {
-            let r = read(p);
-            let st = r.stress;
-            row.extend([st[0], st[1], st[3], st[2], von_mises(&st)]);
-            row.extend(r.plastic_strain_rate);
-            row.extend(r.temperature);
         }
         row.extend(at.energies.as_row());
         row.push(at.imbalance); // divided by the run's largest energy at the end
