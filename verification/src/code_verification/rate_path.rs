@@ -98,8 +98,12 @@ fn steady_flow_stress(law: &RateLaw, sigma0: f64, kdot: f64) -> f64 {
 }
 
 /// The solver's perfectly plastic material with `law` (a power curve with B = 0 for
-/// Johnson-Cook), yield `sigma0` Pa.
-fn material(law: RateLaw, sigma0: f64) -> ViscoPlastic {
+/// Johnson-Cook): yield `sigma0` Pa, and `(E Pa, nu, rho kg/m^3)`.
+pub(crate) fn perfectly_plastic(
+    law: RateLaw,
+    sigma0: f64,
+    (youngs_modulus, poisson_ratio, density): (f64, f64, f64),
+) -> ViscoPlastic {
     let hardening = match law {
         RateLaw::JohnsonCook { .. } => Hardening::Power {
             coefficient: 0.0,
@@ -110,9 +114,9 @@ fn material(law: RateLaw, sigma0: f64) -> ViscoPlastic {
         },
     };
     ViscoPlastic::new(&Material {
-        density: STEEL.2,
-        youngs_modulus: STEEL.0,
-        poisson_ratio: STEEL.1,
+        density,
+        youngs_modulus,
+        poisson_ratio,
         plasticity: Some(Plasticity {
             yield_stress: sigma0,
             hardening,
@@ -232,7 +236,7 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     for &rate in &rates {
         let any = AnyFormulation::new(kind, &mesh.mesh, 1.0, 0.05, &elastic)
             .map_err(|e| e.to_string())?;
-        let mat = material(model_law, model_sigma0);
+        let mat = perfectly_plastic(model_law, model_sigma0, STEEL);
         let run = impact_solver::with_formulation!(any, f => march(&mesh, f, (path, rate, strain / rate), mat));
         let kdot = path.steady_plastic_rate(rate);
         let closed = steady_flow_stress(&law, sigma0, kdot);

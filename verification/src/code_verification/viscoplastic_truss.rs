@@ -33,11 +33,10 @@ use impact_solver::element::SelectiveQ4;
 use impact_solver::input::rate_law::RateLaw;
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::{ConstitutiveModel, Elastic};
-use impact_solver::rate_plasticity::ViscoPlastic;
-use impact_solver::scene::{Hardening, Material, Plasticity};
 use serde_json::Value;
 
 use super::driver::mapped_mesh;
+use super::rate_path::perfectly_plastic;
 use super::{param, with_history};
 use crate::data::RunData;
 
@@ -85,17 +84,7 @@ struct HalfCycle {
 /// The ODE state `[u, v, e_p, k, W_p]` (m, m/s, -, -, J: the axial plastic strain, the
 /// equivalent plastic strain `k' = |e_p'|`, the plastic work) and its rate.
 fn ode_rate(t: &Truss, uniaxial_strain: bool, mass: f64, y: [f64; 5]) -> [f64; 5] {
-    let e = y[0] / t.length;
-    let el = Elastic::new(t.youngs_modulus, t.poisson_ratio);
-    let (sigma, s) = if uniaxial_strain {
-        (
-            el.p_modulus() * e - 2.0 * el.mu * y[2],
-            2.0 * el.mu * e - 3.0 * el.mu * y[2],
-        )
-    } else {
-        let sigma = t.youngs_modulus * (e - y[2]);
-        (sigma, sigma)
-    };
+    let (sigma, s) = ode_stresses(t, uniaxial_strain, &y);
     let over = (s.abs() / t.yield_stress - 1.0).max(0.0);
     let ep_rate = s.signum() * t.d * over.powf(t.p);
     // Plastic work rate per volume: the von Mises stress times the equivalent plastic rate
@@ -110,14 +99,18 @@ fn ode_rate(t: &Truss, uniaxial_strain: bool, mass: f64, y: [f64; 5]) -> [f64; 5
     ]
 }
 
-/// The bar's stress (Pa) in state `y`.
-fn ode_stress(t: &Truss, uniaxial_strain: bool, y: &[f64; 5]) -> f64 {
+/// The bar's axial stress and its von Mises measure `s` (signed; Pa) in state `y`.
+fn ode_stresses(t: &Truss, uniaxial_strain: bool, y: &[f64; 5]) -> (f64, f64) {
     let e = y[0] / t.length;
-    let el = Elastic::new(t.youngs_modulus, t.poisson_ratio);
     if uniaxial_strain {
-        el.p_modulus() * e - 2.0 * el.mu * y[2]
+        let el = Elastic::new(t.youngs_modulus, t.poisson_ratio);
+        (
+            el.p_modulus() * e - 2.0 * el.mu * y[2],
+            2.0 * el.mu * e - 3.0 * el.mu * y[2],
+        )
     } else {
-        t.youngs_modulus * (e - y[2])
+        let sigma = t.youngs_modulus * (e - y[2]);
+        (sigma, sigma)
     }
 }
 
@@ -166,7 +159,13 @@ fn ode_half_cycle(
     let mut follower = Follower::default();
     for n in 0..50_000_000u64 {
         let time = n as f64 * h;
-        let sample = [time, ode_stress(t, uniaxial_strain, &y), y[1], y[3], y[4]];
+        let sample = [
+            time,
+            ode_stresses(t, uniaxial_strain, &y).0,
+            y[1],
+            y[3],
+            y[4],
+        ];
         if let Some(done) = follower.take(t, sample) {
             return Ok(done);
         }
@@ -187,19 +186,11 @@ fn strip_half_cycle(
 ) -> Result<(HalfCycle, Vec<[f64; 3]>), String> {
     let side = t.area.sqrt();
     let mesh = mapped_mesh(t.length, side, nx, 2, 0.0)?;
-    let material = ViscoPlastic::new(&Material {
-        density: t.density,
-        youngs_modulus: t.youngs_modulus,
-        poisson_ratio: t.poisson_ratio,
-        plasticity: Some(Plasticity {
-            yield_stress: t.yield_stress,
-            hardening: Hardening::Linear {
-                tangent_modulus: 0.0,
-            },
-            rate: Some(law),
-        }),
-    })
-    .ok_or("viscoplastic-truss: not a rate-dependent material")?;
+    let material = perfectly_plastic(
+        law,
+        t.yield_stress,
+        (t.youngs_modulus, t.poisson_ratio, t.density),
+    );
     let f = SelectiveQ4::new(&mesh.mesh, side).map_err(|e| e.to_string())?;
     let mut model = PlateModel::new(f, material, &mesh, t.density);
     let dt = 0.8 * model.critical_time_step(t.density);
