@@ -32,6 +32,33 @@ pub struct SceneFile {
     pub time: TimeFile,
     #[serde(default)]
     pub output: OutputFile,
+    /// `small` (default: the paper's model) or `finite`.
+    #[serde(default)]
+    pub kinematics: Kinematics,
+}
+
+/// How the plate deforms: small strains and rotations (the paper's model, eqs. 13-16), or
+/// finite deformation (updated Lagrangian, Green-Naghdi rate: `ALGORITHM.md` section 3c).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kinematics {
+    #[default]
+    Small,
+    Finite,
+}
+
+impl Kinematics {
+    /// The name in scenes and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kinematics::Small => "small",
+            Kinematics::Finite => "finite",
+        }
+    }
+
+    pub fn is_small(&self) -> bool {
+        *self == Kinematics::Small
+    }
 }
 
 /// `plate: {length, width, thickness, ends}`, lengths in m; `length` is clamp to clamp,
@@ -426,6 +453,7 @@ pub struct Scene {
     pub load: Load,
     pub time: TimeSettings,
     pub output: OutputSettings,
+    pub kinematics: Kinematics,
 }
 
 /// Plate dimensions (m) and end supports.
@@ -863,6 +891,7 @@ impl Validator<'_> {
             load,
             time,
             output,
+            kinematics: file.kinematics,
         })
     }
 
