@@ -9,6 +9,7 @@ pub mod collapse;
 pub mod column_impact;
 pub mod driver;
 pub mod element_eigen;
+pub mod finite_path;
 pub mod hertz_line;
 pub mod macneal_harder;
 pub mod manufactured;
@@ -29,7 +30,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 16] = [
+pub const NAMES: [&str; 17] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -46,6 +47,7 @@ pub const NAMES: [&str; 16] = [
     "hertz-line",
     "rate-strain-path",
     "viscoplastic-truss",
+    "finite-strain-path",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -67,6 +69,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "hertz-line" => hertz_line::hertz_line(p),
         "rate-strain-path" => rate_path::rate_strain_path(p),
         "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
+        "finite-strain-path" => finite_path::finite_strain_path(p),
         _ => return None,
     })
 }
