@@ -13,6 +13,7 @@ pub mod finite_path;
 pub mod hertz_line;
 pub mod macneal_harder;
 pub mod manufactured;
+pub mod membrane;
 pub mod orders;
 pub mod plastic_path;
 pub mod rate_path;
@@ -30,7 +31,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 17] = [
+pub const NAMES: [&str; 18] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -48,6 +49,7 @@ pub const NAMES: [&str; 17] = [
     "rate-strain-path",
     "viscoplastic-truss",
     "finite-strain-path",
+    "membrane-regime",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -70,6 +72,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "rate-strain-path" => rate_path::rate_strain_path(p),
         "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
         "finite-strain-path" => finite_path::finite_strain_path(p),
+        "membrane-regime" => membrane::membrane_regime(p),
         _ => return None,
     })
 }
