@@ -134,7 +134,7 @@ class FiniteKinematics:
             G_step = G
         # the increment: midpoint gradient, its polar rotation, the unrotated rate of deformation
         F_mid = eye + 0.5 * (self.Gn + G_step)
-        L = (G_step - self.Gn) @ np.linalg.inv(F_mid)
+        L = (G_step - self.Gn) @ np.swapaxes(inv_t2(F_mid), 1, 2)
         d = 0.5 * (L + np.swapaxes(L, 1, 2))
         cm, sm = polar_rotation(F_mid)
         d_vec = np.stack([d[:, 0, 0], d[:, 1, 1], np.zeros(len(d)), d[:, 0, 1]], axis=1)
