@@ -8,7 +8,8 @@ CHECKS
     exactly (round-off), and the stored energy does not change (objectivity);
   - elastic simple shear against Dienes' (1979) closed form for the Green-Naghdi rate, second
     order in the step; the right edge's force against sigma n l on the tilted current edge;
-  - the deformed-step factor (section 3c) and the inversion check (section 7);
+  - the deformed-step factor (section 3c) and the inversion check (section 7), and a run
+    stopped by the deformed-step check at the step impact simulate stops at;
   - the scene key `kinematics` and the summary's "kinematics": "finite".
 Each test also shows that small kinematics (section 2's strain B u, Cauchy on the reference)
 misses by order one, so a formulation that ignored the rotation would fail it.
@@ -22,7 +23,7 @@ from indep_fe.finite import FiniteKinematics, inverted_element, polar_rotation, 
 from indep_fe.material import MaterialModel, lame
 from indep_fe.mesh import build_mesh
 from indep_fe.scene import Material, MeshSpec, Plate, SceneError
-from indep_fe.solver import simulate
+from indep_fe.solver import UnstableRun, simulate
 
 E, NU, W, H = 200e9, 0.3, 0.01, 0.01
 LAM, MU = lame(E, NU)
@@ -165,3 +166,22 @@ def test_scene_kinematics_key_and_summary():
     # at 10 m/s and 50 us the two agree to the small rotations (not to round-off)
     a, b = small.column("mid_uy_m"), finite.column("mid_uy_m")
     assert 0 < np.abs(a - b).max() < 1e-2 * np.abs(a).max()
+
+
+def test_run_stops_when_the_deformed_step_falls_below_dt():
+    """Section 3c: a 100 m/s rigid nose (surface coupling) on the 10 x 4 elasto-plastic plate at
+    cfl 0.98 compresses element 9 until its stable step, dt_plate sqrt(S_ref / S_cur), is below
+    dt: the check at step 64 stops the run (impact simulate: the same step, element and
+    numbers); with time.allow_unstable_dt the run goes on to its end."""
+    over = {f"load.impactor.{k}": None for k in ("youngs_modulus", "poisson_ratio",
+                                                 "contact_law", "indentation_datum")}
+    over.update({"kinematics": "finite", "load.impactor.contact": "surface",
+                 "load.impactor.nose_radius": 0.5, "load.impactor.velocity": 100.0,
+                 "time.dt": {"cfl": 0.98}, "time.end": 3e-4,
+                 "material.plasticity": {"yield_stress": 250.0e6,
+                                         "hardening": {"linear": 1.5e9}}})
+    with pytest.raises(UnstableRun, match=r"at step 64 .* stable step 7.965648e-07 s "
+                                          r"\(element 9\) is below dt"):
+        simulate(scene(**over))
+    res = simulate(scene(**over, **{"time.allow_unstable_dt": True}))
+    assert res.summary["n_steps"] == 376
