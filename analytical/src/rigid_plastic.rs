@@ -219,7 +219,10 @@ mod tests {
         let b = t.bounds();
         let m = INSCRIBED + INSCRIBED * INSCRIBED;
         assert!((m - 1.0).abs() < 1e-15);
-        assert!(b.estimate < b.membrane_upper && b.membrane_upper < 0.6 * b.upper, "{b:?}");
+        assert!(
+            b.estimate < b.membrane_upper && b.membrane_upper < 0.6 * b.upper,
+            "{b:?}"
+        );
         let k = 0.5 * 18.0 * 1600.0;
         let w = b.membrane_upper - (b.upper - k / b.collapse_load);
         let d = INSCRIBED * square_yield_energy(w, 0.0188, b.collapse_load);

@@ -10,14 +10,13 @@ use impact_solver::scene::{Ends, Hardening, Scene};
 
 /// The metric names, all prefixed `rigid_plastic_`: the closed forms of the scene (carried
 /// over to a rigid wall in the discriminating-power table, since they do not depend on the run).
-pub const SCENE_KEYS: [&str; 7] = [
+pub const SCENE_KEYS: [&str; 6] = [
     "rigid_plastic_collapse_load_N",
     "rigid_plastic_elastic_energy_J",
     "rigid_plastic_energy_ratio",
     "rigid_plastic_estimate_m",
     "rigid_plastic_lower_m",
     "rigid_plastic_upper_m",
-    "rigid_plastic_membrane_upper_m",
 ];
 
 /// The slope of the flow stress against the plastic strain, Pa: `E E_t / (E - E_t)` for
@@ -83,7 +82,6 @@ pub fn metrics(scene: &Scene, plastic_work: f64) -> Vec<(&'static str, f64)> {
         b.estimate,
         b.lower,
         b.upper,
-        b.membrane_upper,
     ];
     let mut out: Vec<(&'static str, f64)> = SCENE_KEYS.into_iter().zip(values).collect();
     out.push(("rigid_plastic_local_dissipation_J", local));

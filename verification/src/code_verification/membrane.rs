@@ -30,7 +30,10 @@ fn numbers(p: &Params, k: &str, default: &[f64]) -> Result<Vec<f64>, String> {
         None => Ok(default.to_vec()),
         Some(Value::Array(a)) => a
             .iter()
-            .map(|v| v.as_f64().ok_or_else(|| format!("param {k}: {v} is not a number")))
+            .map(|v| {
+                v.as_f64()
+                    .ok_or_else(|| format!("param {k}: {v} is not a number"))
+            })
             .collect(),
         Some(v) => Err(format!("param {k}: {v} is not a list of numbers")),
     }
@@ -66,7 +69,10 @@ fn deflection(
 pub fn membrane_regime(p: &Params) -> Result<RunData, String> {
     let thicknesses = numbers(p, "thicknesses", &[0.0188, 0.0094])?;
     let velocities = numbers(p, "velocities", &[10.0, 20.0, 40.0])?;
-    let mesh = (param(p, "nx", 40.0)? as usize, param(p, "ny", 8.0)? as usize);
+    let mesh = (
+        param(p, "nx", 40.0)? as usize,
+        param(p, "ny", 8.0)? as usize,
+    );
     let mut m = BTreeMap::new();
     let mut rows: Vec<[f64; 7]> = Vec::new();
     for &h in &thicknesses {
