@@ -128,8 +128,14 @@ fn structural_errors_name_line_and_column() {
     assert!(!e.contains("DuplicateKeyPolicy"));
     // kinematics: the two words, the wrong one named where it is.
     let e = error_for(|s| format!("{s}kinematics: large\n"));
-    assert_mentions(&e, &["bad.yaml:", ":13", "kinematics", "large", "small", "finite"]);
-    let ok = Scene::from_yaml(&format!("{EXAMPLE}kinematics: finite\n"), Path::new("k.yaml"));
+    assert_mentions(
+        &e,
+        &["bad.yaml:", ":13", "kinematics", "large", "small", "finite"],
+    );
+    let ok = Scene::from_yaml(
+        &format!("{EXAMPLE}kinematics: finite\n"),
+        Path::new("k.yaml"),
+    );
     assert_eq!(
         ok.unwrap().kinematics,
         impact_solver::scene::Kinematics::Finite

@@ -27,7 +27,7 @@ use crate::physics::element::{
     small_strain_response, Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
 use crate::physics::geometry::Vector;
-use crate::physics::kinematics::{self, deformation, inverse, piola, Gradient, Memory};
+use crate::physics::kinematics::{self, deformation, det, inverse_with, piola, Gradient, Memory};
 use crate::physics::material::{ConstitutiveModel, Response};
 
 /// A small-strain element formulation under finite deformation.
@@ -49,7 +49,7 @@ pub trait FiniteResponse: Formulation {
 /// One point's update from its gradient `g` (of `F_bar` for F-bar): the step from the
 /// point's memory, the material at the unrotated strain, the memory written where `active`
 /// has the lane; the response's stress is the Kirchhoff stress in the current frame, Pa
-/// (energy densities per reference volume, J/m^3).
+/// (energy densities per reference volume, J/m^3), and `(I + g)^-1`.
 #[inline(always)]
 fn point_update<M: ConstitutiveModel, R: Real>(
     material: &M,
@@ -57,7 +57,7 @@ fn point_update<M: ConstitutiveModel, R: Real>(
     batch: &mut M::Batch,
     at: usize,
     active: R::Mask,
-) -> Response<R> {
+) -> (Response<R>, [R; 4]) {
     let memory = M::memory(batch).map_or(Memory::default(), |m| m.at::<R>(at));
     let step = kinematics::step(&memory, g);
     let mut r = material.update(&step.strain, batch, at, active);
@@ -68,9 +68,8 @@ fn point_update<M: ConstitutiveModel, R: Real>(
         };
         m.store(at, &next, active);
     }
-    let (c, s) = step.rotation;
-    r.stress = kinematics::rotate(&r.stress, c, s);
-    r
+    r.stress = step.rotation.apply(&r.stress);
+    (r, step.inverse)
 }
 
 /// Adds a point's energy densities times its reference weight `w` (m^3) to `energy`.
@@ -97,9 +96,8 @@ impl FiniteResponse for FullQ4 {
             let geometry = &self.points::<R>(at)[p];
             let w = geometry.det_j::<R>(at) * self.width;
             let g = geometry.gradient(at, u);
-            let r = point_update(material, &g, batch, at, active);
+            let (r, inv) = point_update(material, &g, batch, at, active);
             add_energy::<M, R>(&mut energy, w, &r);
-            let (_, inv) = inverse(&deformation(&g));
             geometry.add_piola(at, w, &piola(&r.stress, &inv), &mut f);
         }
         (f, energy)
@@ -116,7 +114,9 @@ impl FiniteResponse for SelectiveQ4 {
         (batches, active): (&mut [M::Batch], R::Mask),
     ) -> (Vector<R>, Energy<R>) {
         let centroid = self.centroid.batch::<R>(at);
-        let (j_c, inv_c) = inverse(&deformation(&centroid.gradient(at, u)));
+        let f_c = deformation(&centroid.gradient(at, u));
+        let j_c = det(&f_c);
+        let inv_c = inverse_with(&f_c, R::splat(1.0) / j_c);
         let mut f = [R::splat(0.0); 8];
         let mut energy = Energy::<R>::default();
         let mut mean_total = R::splat(0.0);
@@ -124,20 +124,21 @@ impl FiniteResponse for SelectiveQ4 {
             let geometry = &self.full.points::<R>(at)[p];
             let w = geometry.det_j::<R>(at) * self.full.width;
             let f_p = deformation(&geometry.gradient(at, u));
-            let (j_p, inv) = inverse(&f_p);
-            let alpha = (j_c / j_p).sqrt();
+            let alpha = (j_c / det(&f_p)).sqrt();
             let g_bar = [
                 f_p[0] * alpha - 1.0,
                 f_p[1] * alpha,
                 f_p[2] * alpha,
                 f_p[3] * alpha - 1.0,
             ];
-            let r = point_update(material, &g_bar, batch, at, active);
+            let (r, inv_bar) = point_update(material, &g_bar, batch, at, active);
             add_energy::<M, R>(&mut energy, w, &r);
             let tau = r.stress;
             let mean = (tau[0] + tau[1]) * 0.5;
             mean_total += w * mean;
             let deviator = [tau[0] - mean, tau[1] - mean, tau[2], tau[3]];
+            // F^-1 = alpha F_bar^-1.
+            let inv = kinematics::four(|c| inv_bar[c] * alpha);
             geometry.add_piola(at, w, &piola(&deviator, &inv), &mut f);
         }
         // The mean on the centroid's current gradients: P = m F_c^-T.
@@ -159,10 +160,9 @@ impl FiniteResponse for OnePointQ4 {
     ) -> (Vector<R>, Energy<R>) {
         let d = self.data.batch::<R>(at);
         let g = d.centroid.gradient(at, u);
-        let r = point_update(material, &g, &mut batches[0], at, active);
+        let (r, inv) = point_update(material, &g, &mut batches[0], at, active);
         let mut energy = Energy::<R>::default();
         add_energy::<M, R>(&mut energy, R::of_batch(&d.volume, at), &r);
-        let (_, inv) = inverse(&deformation(&g));
         let mut f = [R::splat(0.0); 8];
         d.weighted.add_piola(at, &piola(&r.stress, &inv), &mut f);
         energy.hourglass = self.add_hourglass(at, u, &mut f);

@@ -7,7 +7,7 @@
 
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
-use crate::physics::kinematics::{deformation, inverse, polar_rotation, rotate, Memory};
+use crate::physics::kinematics::{deformation, det, Memory, Rotation};
 use crate::physics::material::{ConstitutiveModel, Elastic, Response, Strain, Stress};
 
 /// `M` under finite deformation.
@@ -64,9 +64,8 @@ impl<M: ConstitutiveModel> ConstitutiveModel for Finite<M> {
         let m = &state.memory;
         let tau = self.0.stress(&m.strain, &state.inner);
         let f = deformation(&m.gradient);
-        let (j, _) = inverse(&f);
-        let (c, s) = polar_rotation(&f);
-        rotate(&tau, c, s).map(|x| x / j)
+        let j = det(&f);
+        Rotation::of_deformation(&f).apply(&tau).map(|x| x / j)
     }
 
     fn equivalent_plastic_strain(&self, state: &Self::State) -> f64 {

@@ -71,8 +71,8 @@ impl Memory<Lanes> {
     #[inline(always)]
     pub fn at<R: Real>(&self, at: usize) -> Memory<R> {
         Memory {
-            gradient: std::array::from_fn(|c| R::of_batch(&self.gradient[c], at)),
-            strain: std::array::from_fn(|c| R::of_batch(&self.strain[c], at)),
+            gradient: four(|c| R::of_batch(&self.gradient[c], at)),
+            strain: four(|c| R::of_batch(&self.strain[c], at)),
         }
     }
 
@@ -86,42 +86,89 @@ impl Memory<Lanes> {
     }
 }
 
+/// `[f(0), f(1), f(2), f(3)]`, written out (LLVM may leave `std::array::from_fn` and
+/// `array::map` out of line in a kernel: see `crate::lanes::simd::each_lane`).
+#[inline(always)]
+pub fn four<T>(f: impl Fn(usize) -> T) -> [T; 4] {
+    [f(0), f(1), f(2), f(3)]
+}
+
 /// `F = I + G`.
 #[inline(always)]
 pub fn deformation<R: Real>(g: &Gradient<R>) -> [R; 4] {
     [g[0] + 1.0, g[1], g[2], g[3] + 1.0]
 }
 
-/// `det F` and `F^-1` (row-major) of a 2 x 2 `F`.
+/// `det F` of a 2 x 2 `F`.
 #[inline(always)]
-pub fn inverse<R: Real>(f: &[R; 4]) -> (R, [R; 4]) {
-    let det = f[0] * f[3] - f[1] * f[2];
-    let r = R::splat(1.0) / det;
-    (
-        det,
-        [
-            f[3] * r,
-            R::splat(0.0) - f[1] * r,
-            R::splat(0.0) - f[2] * r,
-            f[0] * r,
-        ],
-    )
+pub fn det<R: Real>(f: &[R; 4]) -> R {
+    f[0] * f[3] - f[1] * f[2]
 }
 
-/// The rotation `R = [[c, -s], [s, c]]` of the polar decomposition `F = R U` (in-plane, `det F
-/// > 0`), as `(c, s)`: `c = (F_xx + F_yy) / n`, `s = (F_yx - F_xy) / n`.
+/// `F^-1` (row-major) of a 2 x 2 `F` from `1 / det F`.
 #[inline(always)]
-pub fn polar_rotation<R: Real>(f: &[R; 4]) -> (R, R) {
+pub fn inverse_with<R: Real>(f: &[R; 4], inv_det: R) -> [R; 4] {
+    let zero = R::splat(0.0);
+    [
+        f[3] * inv_det,
+        zero - f[1] * inv_det,
+        zero - f[2] * inv_det,
+        f[0] * inv_det,
+    ]
+}
+
+/// The polar decomposition's rotation `R = [[c, -s], [s, c]]` of a 2 x 2 `F` with `det F > 0`
+/// (`c = a / n`, `s = b / n`, `a = F_xx + F_yy`, `b = F_yx - F_xy`, `n^2 = a^2 + b^2`), held by
+/// the products `c^2`, `s^2`, `c s`: all that rotating a symmetric tensor takes, so it needs
+/// `1 / n^2` and no square root.
+#[derive(Debug, Clone, Copy)]
+pub struct Rotation<R> {
+    cc: R,
+    ss: R,
+    cs: R,
+}
+
+/// `(a, b, n^2)` of `F` ([`Rotation`]).
+#[inline(always)]
+pub fn polar_terms<R: Real>(f: &[R; 4]) -> (R, R, R) {
     let (a, b) = (f[0] + f[3], f[2] - f[1]);
-    let r = R::splat(1.0) / (a * a + b * b).sqrt();
-    (a * r, b * r)
+    (a, b, a * a + b * b)
 }
 
-/// `R t R^T` of a symmetric tensor `[xx, yy, zz, xy]` (tensor shear), `R = [[c, -s], [s, c]]`
-/// about z (`zz` unchanged); `R^T t R` is `rotate(t, c, -s)`.
+impl<R: Real> Rotation<R> {
+    /// From [`polar_terms`] `a`, `b` and `1 / n^2`.
+    #[inline(always)]
+    pub fn of(a: R, b: R, inv_n2: R) -> Rotation<R> {
+        Rotation {
+            cc: a * a * inv_n2,
+            ss: b * b * inv_n2,
+            cs: a * b * inv_n2,
+        }
+    }
+
+    /// The rotation of `F` (one division).
+    #[inline(always)]
+    pub fn of_deformation(f: &[R; 4]) -> Rotation<R> {
+        let (a, b, n2) = polar_terms(f);
+        Rotation::of(a, b, R::splat(1.0) / n2)
+    }
+
+    /// `R t R^T` of a symmetric tensor `[xx, yy, zz, xy]` (tensor shear; `zz` unchanged).
+    #[inline(always)]
+    pub fn apply(&self, t: &[R; 4]) -> [R; 4] {
+        rotate(t, self.cc, self.ss, self.cs)
+    }
+
+    /// `R^T t R`.
+    #[inline(always)]
+    pub fn apply_transposed(&self, t: &[R; 4]) -> [R; 4] {
+        rotate(t, self.cc, self.ss, R::splat(0.0) - self.cs)
+    }
+}
+
+/// `R t R^T` for `R = [[c, -s], [s, c]]` given `c^2`, `s^2`, `c s`.
 #[inline(always)]
-pub fn rotate<R: Real>(t: &[R; 4], c: R, s: R) -> [R; 4] {
-    let (cc, ss, cs) = (c * c, s * s, c * s);
+fn rotate<R: Real>(t: &[R; 4], cc: R, ss: R, cs: R) -> [R; 4] {
     let shear = cs * t[3] * 2.0;
     [
         cc * t[0] + ss * t[1] - shear,
@@ -136,32 +183,41 @@ pub fn rotate<R: Real>(t: &[R; 4], c: R, s: R) -> [R; 4] {
 pub struct Step<R> {
     /// The unrotated strain after the step, `[xx, yy, zz, gamma_xy]`.
     pub strain: [R; 4],
-    /// `R_{n+1}` as `(c, s)`.
-    pub rotation: (R, R),
+    /// `R_{n+1}`.
+    pub rotation: Rotation<R>,
+    /// `F_{n+1}^-1` (row-major).
+    pub inverse: [R; 4],
 }
 
 /// The step from the point's `memory` (`G_n`, `e^_n`) to the gradient `g` (`G_{n+1}`): the
-/// unrotated strain after it and the rotation at its end (module documentation).
+/// unrotated strain after it, the rotation at its end and `F_{n+1}^-1` (module
+/// documentation). One division gives the four reciprocals it needs (`det` and `n^2` of
+/// `F_mid` and of `F_{n+1}`, each O(1)): `1 / x = r y z w` with `r = 1 / (x y z w)`.
 #[inline(always)]
 pub fn step<R: Real>(memory: &Memory<R>, g: &Gradient<R>) -> Step<R> {
     let p = &memory.gradient;
-    let dg: [R; 4] = std::array::from_fn(|c| g[c] - p[c]);
-    let mid: [R; 4] = std::array::from_fn(|c| (g[c] + p[c]) * 0.5);
-    let f_mid = deformation(&mid);
-    let (_, inv) = inverse(&f_mid);
+    let dg = four(|c| g[c] - p[c]);
+    let mid = four(|c| (g[c] + p[c]) * 0.5);
+    let (f_mid, f) = (deformation(&mid), deformation(g));
+    let (det_mid, det_end) = (det(&f_mid), det(&f));
+    let (a_mid, b_mid, n2_mid) = polar_terms(&f_mid);
+    let (a, b, n2) = polar_terms(&f);
+    let (mid_pair, end_pair) = (det_mid * n2_mid, det_end * n2);
+    let r = R::splat(1.0) / (mid_pair * end_pair);
+    let (r_mid, r_end) = (r * end_pair, r * mid_pair);
+    let inv = inverse_with(&f_mid, r_mid * n2_mid);
     // L dt = dG F_mid^-1, its symmetric part (tensor shear).
     let l_xx = dg[0] * inv[0] + dg[1] * inv[2];
     let l_xy = dg[0] * inv[1] + dg[1] * inv[3];
     let l_yx = dg[2] * inv[0] + dg[3] * inv[2];
     let l_yy = dg[2] * inv[1] + dg[3] * inv[3];
-    let zero = R::splat(0.0);
-    let d = [l_xx, l_yy, zero, (l_xy + l_yx) * 0.5];
-    let (c, s) = polar_rotation(&f_mid);
-    let dr = rotate(&d, c, zero - s);
+    let d = [l_xx, l_yy, R::splat(0.0), (l_xy + l_yx) * 0.5];
+    let dr = Rotation::of(a_mid, b_mid, r_mid * det_mid).apply_transposed(&d);
     let e = &memory.strain;
     Step {
         strain: [e[0] + dr[0], e[1] + dr[1], e[2], e[3] + dr[3] * 2.0],
-        rotation: polar_rotation(&deformation(g)),
+        rotation: Rotation::of(a, b, r_end * det_end),
+        inverse: inverse_with(&f, r_end * n2),
     }
 }
 
@@ -207,9 +263,14 @@ mod tests {
                 gradient: g,
                 strain: s.strain,
             };
-            let (c, sn) = s.rotation;
             let theta = 1.7 * k as f64 / steps as f64;
-            assert!((c - theta.cos()).abs() < 1e-15 && (sn - theta.sin()).abs() < 1e-15);
+            let r = s.rotation.apply(&[1.0, 0.0, 0.0, 0.0]);
+            let (sn, c) = theta.sin_cos();
+            // R e_x e_x R^T = [c^2, s^2, 0, c s]
+            assert!(
+                (r[0] - c * c).abs() < 1e-15 && (r[3] - c * sn).abs() < 1e-15,
+                "{r:?}"
+            );
         }
         // Bound: 1e-17 per step of the 1e-3 strains (round-off of one step's sums), measured
         // below 1e-18 per step.
@@ -243,9 +304,14 @@ mod tests {
     #[test]
     fn the_polar_rotation_of_simple_shear() {
         for gamma in [0.1, 1.0, 10.0] {
-            let (c, s) = polar_rotation(&deformation(&[0.0, gamma, 0.0, 0.0]));
-            let theta = (-gamma / 2.0f64).atan();
-            assert!((c - theta.cos()).abs() < 1e-15 && (s - theta.sin()).abs() < 1e-15);
+            let r = Rotation::of_deformation(&deformation(&[0.0, gamma, 0.0, 0.0]));
+            let (s, c) = (-gamma / 2.0f64).atan().sin_cos();
+            let e = r.apply(&[1.0, 0.0, 0.0, 0.0]);
+            assert!(
+                (e[0] - c * c).abs() < 1e-15 && (e[1] - s * s).abs() < 1e-15,
+                "{e:?}"
+            );
+            assert!((e[3] - c * s).abs() < 1e-15, "{e:?}");
         }
     }
 
@@ -256,7 +322,7 @@ mod tests {
         let r = nalgebra::Matrix2::new(c, -s, s, c);
         let m = nalgebra::Matrix2::new(t[0], t[3], t[3], t[1]);
         let e = r * m * r.transpose();
-        let got = rotate(&t, c, s);
+        let got = Rotation::of(c, s, 1.0).apply(&t);
         for (x, y) in [
             (got[0], e[(0, 0)]),
             (got[1], e[(1, 1)]),
