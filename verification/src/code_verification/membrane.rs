@@ -16,28 +16,13 @@ use impact_solver::scene::{End, Kinematics};
 use impact_solver::{Quiet, Scene};
 use serde_json::Value;
 
-use super::{param, with_history};
+use super::{param, param_numbers, with_history};
 use crate::data::RunData;
 use crate::rigid_plastic::beam_impact;
 
 type Params = BTreeMap<String, Value>;
 
 const SCENE: &str = include_str!("../../scenes/paper-plastic.yaml");
-
-/// A list of numbers parameter (or its default).
-fn numbers(p: &Params, k: &str, default: &[f64]) -> Result<Vec<f64>, String> {
-    match p.get(k) {
-        None => Ok(default.to_vec()),
-        Some(Value::Array(a)) => a
-            .iter()
-            .map(|v| {
-                v.as_f64()
-                    .ok_or_else(|| format!("param {k}: {v} is not a number"))
-            })
-            .collect(),
-        Some(v) => Err(format!("param {k}: {v} is not a list of numbers")),
-    }
-}
 
 /// The largest mid-plane deflection (m, positive) of the Table 1 plate of thickness `h` (m)
 /// struck at `v` (m/s), with `kinematics`, on an `nx` x `ny` half model; and the scene.
@@ -67,8 +52,8 @@ fn deflection(
 }
 
 pub fn membrane_regime(p: &Params) -> Result<RunData, String> {
-    let thicknesses = numbers(p, "thicknesses", &[0.0188, 0.0094])?;
-    let velocities = numbers(p, "velocities", &[10.0, 20.0, 40.0])?;
+    let thicknesses = param_numbers(p, "thicknesses", &[0.0188, 0.0094])?;
+    let velocities = param_numbers(p, "velocities", &[10.0, 20.0, 40.0])?;
     let mesh = (
         param(p, "nx", 40.0)? as usize,
         param(p, "ny", 8.0)? as usize,

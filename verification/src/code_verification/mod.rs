@@ -111,6 +111,25 @@ pub(crate) fn param(p: &BTreeMap<String, Value>, k: &str, default: f64) -> Resul
     }
 }
 
+/// A list of numbers parameter (or its default).
+pub(crate) fn param_numbers(
+    p: &BTreeMap<String, Value>,
+    k: &str,
+    default: &[f64],
+) -> Result<Vec<f64>, String> {
+    match p.get(k) {
+        None => Ok(default.to_vec()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_f64()
+                    .ok_or_else(|| format!("param {k}: {v} is not a number"))
+            })
+            .collect(),
+        Some(v) => Err(format!("param {k}: {v} is not a list of numbers")),
+    }
+}
+
 /// The elastic-plastic material of the plasticity builtins (steel with linear hardening by
 /// default), SI units.
 #[derive(Debug, Clone, Copy)]
