@@ -194,6 +194,11 @@ def _figures(r: UQResult, rows: Sequence[dict[str, Any]], folder: Path, stem: st
     return files
 
 
+WEAK_CORRELATION = 0.9
+"""Below this correlation of the spread check's paired outputs the page says that the sampling
+mesh does not model the declared mesh's spread point by point."""
+
+
 def _surrogate_note(r: UQResult) -> str:
     lv = r.study["sampling"]["mesh"]
     m = r.study["scenes"][0]["mesh"]
@@ -215,6 +220,12 @@ def _spread_table(r: UQResult) -> str:
         out.append(f"| {oid} | {c['points']} | {_g(c['mean_sampled'])} | {_g(c['mean_declared'])} | "
                    f"{_g(c['std_sampled'])} | {_g(c['std_declared'])} | {c['ratio']:.3f} | "
                    f"{c['corr']:.4f} | {_g(r.u_input(oid))} |")
+    weak = [oid for oid, c in r.spread_check.items() if not c["corr"] >= WEAK_CORRELATION]
+    if weak:
+        out.append(f"\nCorrelation below {WEAK_CORRELATION} ({', '.join(weak)}): the sampling "
+                   "mesh does not follow the declared mesh point by point there; u_input keeps "
+                   "the ratio of the spreads, but the indices and the CDF's shape are the "
+                   "sampling mesh's.")
     return "\n".join(out) + "\n"
 
 

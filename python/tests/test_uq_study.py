@@ -221,3 +221,17 @@ def test_the_page_of_a_study_of_several_scenes(two_scene_study, tmp_path):
     assert "2 scenes, the same design on each" in page
     assert "### The spread on the sampling mesh and on the declared mesh" in page
     assert (tmp_path / "two-indices.svg").exists() and (tmp_path / "two-cdf-convergence.svg").exists()
+
+
+def test_a_weakly_correlated_spread_check_is_said(two_scene_study):
+    import dataclasses
+
+    from impact._uq_page import _spread_table
+
+    _, r = two_scene_study
+    check = {oid: dict(c) for oid, c in r.spread_check.items()}
+    assert "Correlation below" not in _spread_table(dataclasses.replace(
+        r, spread_check={oid: {**c, "corr": 0.99} for oid, c in check.items()}))
+    check["impulse_Ns [slow]"]["corr"] = 0.2
+    text = _spread_table(dataclasses.replace(r, spread_check=check))
+    assert "Correlation below 0.9 (impulse_Ns [slow])" in text
