@@ -50,10 +50,16 @@ fn join(block: &[(usize, String)]) -> String {
         .join(".")
 }
 
-/// `key: rest` -> (key, rest after the colon); `None` for a line without a plain key.
+/// `key: rest` -> (key, rest after the colon); `None` for a line without a plain key. A key
+/// in double quotes counts as its text: the Python package hands dict scenes over as JSON
+/// (`"kinematics": "large"`), whose fields must be named as a file's are.
 fn split_key(s: &str) -> Option<(&str, &str)> {
     let colon = s.find(':')?;
-    let key = s[..colon].trim();
+    let raw = s[..colon].trim();
+    let key = raw
+        .strip_prefix('"')
+        .and_then(|k| k.strip_suffix('"'))
+        .unwrap_or(raw);
     let ok = !key.is_empty()
         && key
             .chars()
@@ -355,6 +361,15 @@ output:
         assert_eq!(field_at(SCENE, 8, 3), "load.pulse");
         assert_eq!(field_at(SCENE, 10, 27), "output.probes.A.y");
         assert_eq!(field_at(SCENE, 1, 8), "title");
+    }
+
+    /// A dict scene from Python arrives as indented JSON: its quoted keys name the field as a
+    /// file's do (before, `<dict>:56:17: unknown variant ...` named none).
+    #[test]
+    fn fields_are_found_in_indented_json() {
+        let json = "{\n  \"mesh\": {\n    \"nx\": \"abc\",\n    \"ny\": 16\n  },\n  \"kinematics\": \"large\"\n}";
+        assert_eq!(field_at(json, 3, 11), "mesh.nx");
+        assert_eq!(field_at(json, 6, 17), "kinematics");
     }
 
     #[test]
