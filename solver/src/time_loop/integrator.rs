@@ -44,6 +44,13 @@ pub const CONSISTENT_GUARD_AFTER_STEPS: u64 = 100;
 /// Steps between checks for inverted elements (a run that inverts one stops within this).
 pub const INVERSION_CHECK_EVERY: u64 = 32;
 
+/// Whether step `n` checks the deformed geometry (inverted elements; under finite deformation
+/// also the deformed mesh's stable step): every [`INVERSION_CHECK_EVERY`] steps and at the
+/// `last` (`ALGORITHM.md` sections 3c and 7).
+fn geometry_check_due(n: u64, last: bool) -> bool {
+    n % INVERSION_CHECK_EVERY == 0 || last
+}
+
 /// The plate model: formulation, material, per-point states, masses.
 pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
     pub formulation: F,
@@ -276,8 +283,10 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
         let energies = stepper.half_step(n, applied, element_energy);
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
-        stepper.check_inversion(n, t, stop.is_some())?;
-        stepper.check_deformed_step(n, t, dt_plate)?;
+        if geometry_check_due(n, stop.is_some()) {
+            stepper.check_inversion(n, t)?;
+            stepper.check_deformed_step(n, t, dt_plate)?;
+        }
         let at = stepper.sample(t, applied, &energies, imbalance);
         recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.probe(p))?;
         watch.step(n, t, stop.is_some(), &stepper)?;
@@ -461,6 +470,9 @@ struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     /// Contact force `F_n` on the whole plate, N (0 under a prescribed load).
     force: f64,
     balance: BalanceMonitor,
+    /// Finite deformation: each element's [`stable_step::centroid_spread`] as made, for
+    /// [`Stepper::check_deformed_step`]; empty under small kinematics.
+    reference_spreads: Vec<f64>,
     /// J
     external_work: f64,
     /// J
@@ -504,6 +516,10 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             model,
             force: 0.0,
             balance: BalanceMonitor::default(),
+            reference_spreads: match scene.kinematics {
+                Kinematics::Small => Vec::new(),
+                Kinematics::Finite => stable_step::reference_spreads(&mesh.mesh),
+            },
             external_work: 0.0,
             plastic_work: 0.0,
             initial_energy: Energies::default(),
@@ -594,12 +610,8 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         Ok((imbalance, balance_error))
     }
 
-    /// Every [`INVERSION_CHECK_EVERY`] steps and at the `last`: an error naming the first
-    /// inverted element.
-    fn check_inversion(&self, n: u64, t: f64, last: bool) -> Result<()> {
-        if n % INVERSION_CHECK_EVERY != 0 && !last {
-            return Ok(());
-        }
+    /// An error naming the first inverted element (at the steps of [`geometry_check_due`]).
+    fn check_inversion(&self, n: u64, t: f64) -> Result<()> {
         let Some(e) = self.mesh.mesh.first_inverted(&self.u) else {
             return Ok(());
         };
@@ -626,11 +638,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
     /// [`stable_step::deformed_ratio`] below it, checked with the inversions (unless
     /// `time.allow_unstable_dt`).
     fn check_deformed_step(&self, n: u64, t: f64, dt_plate: f64) -> Result<()> {
-        let finite = self.scene.kinematics == Kinematics::Finite;
-        if !finite || self.scene.time.allow_unstable_dt || n % INVERSION_CHECK_EVERY != 0 {
+        let small = self.scene.kinematics == Kinematics::Small;
+        if small || self.scene.time.allow_unstable_dt {
             return Ok(());
         }
-        let (ratio, e) = stable_step::deformed_ratio(&self.mesh.mesh, &self.u);
+        let (ratio, e) =
+            stable_step::deformed_ratio(&self.mesh.mesh, &self.reference_spreads, &self.u);
         if self.dt <= ratio * dt_plate {
             return Ok(());
         }

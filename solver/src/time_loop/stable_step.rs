@@ -46,27 +46,38 @@ pub fn element_bound<F: Formulation>(formulation: &F, elastic: &Elastic, density
     2.0 / lambda_max.sqrt()
 }
 
+/// `S = sum_a |grad N_a|^2` (1/m^2) at the centroid of the element with node coordinates
+/// `c` (m): what [`deformed_ratio`] compares.
+pub fn centroid_spread(c: &[[f64; 2]; 4]) -> f64 {
+    let g = PointGeometry::at(&c.map(|p| [p[0] - c[0][0], p[1] - c[0][1]]), [0.0, 0.0]);
+    (0..4)
+        .map(|a| g.dndx[a] * g.dndx[a] + g.dndy[a] * g.dndy[a])
+        .sum()
+}
+
+/// [`centroid_spread`] of every element of `mesh` as it was made (the reference of
+/// [`deformed_ratio`], computed once per run).
+pub fn reference_spreads(mesh: &Mesh) -> Vec<f64> {
+    (0..mesh.elements.len())
+        .map(|e| centroid_spread(&mesh.element_coords(e)))
+        .collect()
+}
+
 /// How far deformation has shortened the stable step, for finite deformation: the smallest
-/// over the elements of `sqrt(S_ref / S_cur)`, `S = sum_a |grad N_a|^2` at the centroid on the
-/// reference and the current (`u`, m) configuration, and that element. An element's highest
-/// frequency is `omega^2 ~ (lambda + 2 mu) S_cur / rho_0` (the forces `w_ref tau : grad_x N`
-/// with a Kirchhoff modulus and the reference mass), so its step scales by this ratio: by the
-/// stretch of a side compressed alone, 1 for a rigid motion.
-pub fn deformed_ratio(mesh: &Mesh, u: &[f64]) -> (f64, usize) {
-    let spread = |c: &[[f64; 2]; 4]| {
-        let g = PointGeometry::at(&c.map(|p| [p[0] - c[0][0], p[1] - c[0][1]]), [0.0, 0.0]);
-        (0..4)
-            .map(|a| g.dndx[a] * g.dndx[a] + g.dndy[a] * g.dndy[a])
-            .sum::<f64>()
-    };
+/// over the elements of `sqrt(S_ref / S_cur)` ([`centroid_spread`] on the reference,
+/// `reference` from [`reference_spreads`], and on the current (`u`, m) configuration), and that
+/// element. An element's highest frequency is `omega^2 ~ (lambda + 2 mu) S_cur / rho_0` (the
+/// forces `w_ref tau : grad_x N` with a Kirchhoff modulus and the reference mass), so its step
+/// scales by this ratio: by the stretch of a side compressed alone, 1 for a rigid motion.
+pub fn deformed_ratio(mesh: &Mesh, reference: &[f64], u: &[f64]) -> (f64, usize) {
     let mut smallest = (f64::INFINITY, 0);
     for (e, nodes) in mesh.elements.iter().enumerate() {
-        let reference = mesh.element_coords(e);
+        let made = mesh.element_coords(e);
         let current = std::array::from_fn(|a| {
             let n = nodes[a] as usize;
-            [reference[a][0] + u[2 * n], reference[a][1] + u[2 * n + 1]]
+            [made[a][0] + u[2 * n], made[a][1] + u[2 * n + 1]]
         });
-        let ratio = (spread(&reference) / spread(&current)).sqrt();
+        let ratio = (reference[e] / centroid_spread(&current)).sqrt();
         if ratio < smallest.0 {
             smallest = (ratio, e);
         }
