@@ -114,7 +114,15 @@ pub fn read(path: &Path) -> Result<Study, String> {
 
 /// Parses and validates a study's YAML text; `path` names it and resolves its scene.
 pub fn parse(text: &str, path: &Path) -> Result<Study, String> {
-    let file: StudyFile = parse_located(text, path).map_err(|e| e.to_string())?;
+    let file: StudyFile = parse_located(
+        text,
+        path,
+        (
+            "study file",
+            "every study needs title, scene, inputs, sampling, convergence, mesh_levels and outputs",
+        ),
+    )
+    .map_err(|e| e.to_string())?;
     let scene_loc = Loc::of(path, &file.scene);
     let scene = path
         .parent()
