@@ -66,8 +66,9 @@ if [[ $bench_status -ne 0 ]]; then
     echo "main-job: the benchmarks failed (status $bench_status); the report shows what they wrote" >&2
 fi
 
-# The uncertainty studies (issue 27): the paper case's Table 1 rows at the sample size that
-# converges (verification/uq/paper-{plastic,elastic}.yaml), after the timed benchmarks so that
+# The uncertainty studies (issue 27): the paper case's Table 1 rows under both couplings and its
+# Table 2 impulses, each at the sample size that converges (verification/uq/paper-{plastic,
+# elastic}{,-surface}.yaml, table2-{plastic,elastic}.yaml), after the timed benchmarks so that
 # they do not disturb them; the Python package is built into the venv first (maturin reuses
 # target/release). A failed study leaves the report's section saying so; the job's status
 # is then at least 1.

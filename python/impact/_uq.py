@@ -6,7 +6,13 @@ scrambled Sobol' sequence (or Latin hypercubes) with the declared seed, the runs
 :func:`impact.sweep` (a local pool or a Dask cluster: the rows are bit-identical either way), and
 the base size ``N`` doubles through the declared sizes until the mean, the standard deviation
 and the total-order indices of every output move less than the declared tolerances from
-``N / 2`` to ``N``. First- and total-order Sobol' indices come from SALib (Jansen's estimators,
+``N / 2`` to ``N``. A study of several scenes (``scenes:``, e.g. Table 2's velocities) runs
+the same design on each; its outputs are the declared ones per scene (``key [label]``), and all
+of them must converge. With ``sampling.mesh`` the sampled runs use that coarser mesh level (a
+cheaper model of the spread); the first size's ``A`` and ``B`` points then run on both meshes,
+and the samples are carried onto the declared mesh by the affine map those points give
+(``y -> m_declared + ratio (y - m_sampled)``, the ratio of the two meshes' spreads and their
+means on the same points): ``u_input`` is the converged standard deviation times the ratio. First- and total-order Sobol' indices come from SALib (Jansen's estimators,
 bootstrap intervals); the mean and standard deviation from the ``2 N`` rows of ``A`` and ``B``
 (the inputs' joint distribution), with percentile bootstrap intervals. The numerical
 uncertainty comes from the declared mesh levels by the project's GCI rule (``impact._impact.gci``).
@@ -53,13 +59,21 @@ class UQResult:
     """A finished study.
 
     Attributes:
-        study: the validated declaration (dict), with its inputs and outputs.
-        samples: one row per run (the sweep's frame: the inputs' columns, the summaries).
+        study: the validated declaration (dict): its scenes (with their declared mesh), inputs
+            and ``outputs``, a dict ``id -> {key, scene, table, scale, kind, label}`` (the id is
+            the summary key, ``key [scene label]`` in a study of several scenes).
+        samples: one row per run (the sweep's frame: the inputs' columns, the summaries,
+            ``scene``: its label), scene after scene, each in the design's order.
         steps: the estimates at each base size, in order; ``steps[-1]`` is the final one.
         converged_at: the base size at which every output converged (None: not within the
             declared sizes).
-        nominal: the summary of the scene as declared (the study's ``S``).
-        mesh: per output, the values on the mesh levels and its ``u_num`` with how it was formed.
+        nominal: per scene (in declared order) its summary as declared (the study's ``S``).
+        mesh: per output id, the values on the mesh levels and its ``u_num`` with how it was
+            formed.
+        spread_check: with ``sampling.mesh``, per output id the spread of the first size's ``A``
+            and ``B`` points on the sampling mesh and on the declared mesh (``points``,
+            ``level``, ``mean_sampled``, ``mean_declared``, ``std_sampled``, ``std_declared``,
+            ``ratio``, ``corr``); empty otherwise.
         wall_time_s: the study's wall time (runs and analysis), s.
     """
 
@@ -67,13 +81,41 @@ class UQResult:
     samples: "pandas.DataFrame"
     steps: list[Step]
     converged_at: int | None
-    nominal: dict[str, Any]
+    nominal: list[dict[str, Any]]
     mesh: dict[str, dict[str, Any]] = field(default_factory=dict)
+    spread_check: dict[str, dict[str, Any]] = field(default_factory=dict)
     wall_time_s: float = 0.0
 
     @property
     def final(self) -> Step:
         return self.steps[-1]
+
+    def declared_samples(self, oid: str) -> np.ndarray:
+        """The propagated samples of ``oid`` (the final size's ``A`` and ``B`` rows) on the
+        declared mesh: as run, or carried there from the sampling mesh by the spread check's
+        affine map (shifted onto the declared mesh's spread alone when the sampled one has
+        none)."""
+        y = np.asarray(self.final.stats[oid]["samples"])
+        c = self.spread_check.get(oid)
+        if c is None:
+            return y
+        if not c["std_sampled"] > 0:
+            return y - c["mean_sampled"] + c["mean_declared"]
+        return c["mean_declared"] + c["ratio"] * (y - c["mean_sampled"])
+
+    def u_input(self, oid: str) -> float:
+        """The input uncertainty of ``oid`` on the declared mesh: the standard deviation of
+        :meth:`declared_samples` (the converged one times the spread ratio of the meshes when
+        the runs were sampled on another)."""
+        c = self.spread_check.get(oid)
+        if c is not None and not c["std_sampled"] > 0:
+            return c["std_declared"]
+        return float(np.std(self.declared_samples(oid), ddof=1))
+
+    def nominal_value(self, oid: str) -> float:
+        """The output ``oid`` of its scene as declared (``S``)."""
+        o = self.study["outputs"][oid]
+        return output_value(self.nominal[o["scene"]], o["key"])
 
 
 def output_value(row: Any, key: str) -> float:
@@ -128,22 +170,50 @@ def _run_rows(scene: str, fixed: dict, keys: list[str], x: np.ndarray, client,
     return df
 
 
-def _mesh_uncertainty(scene: str, study: dict, outputs: list[str], nominal: dict,
+def _at_level(scene: dict, level: float) -> dict[str, int]:
+    """The overrides of a scene's declared mesh scaled by ``level`` (``ny`` at least 2)."""
+    nx, ny = scene["mesh"]["nx"], scene["mesh"]["ny"]
+    return {"mesh.nx": round(nx * level), "mesh.ny": max(2, round(ny * level))}
+
+
+def _spread_check(decl: dict, x: np.ndarray, keys: list[str], client,
+                  jobs) -> dict[str, dict[str, Any]]:
+    """The points ``x`` run on the sampling mesh and on the declared mesh, per scene: per
+    output the two standard deviations, their ratio (declared / sampled) and the correlation."""
+    level = decl["sampling"]["mesh"]
+    out = {}
+    for i, sc in enumerate(decl["scenes"]):
+        coarse = _run_rows(sc["path"], {**decl["set"], **_at_level(sc, level)}, keys, x, client,
+                           jobs)
+        fine = _run_rows(sc["path"], decl["set"], keys, x, client, jobs)
+        for oid, o in decl["outputs"].items():
+            if o["scene"] != i:
+                continue
+            a = np.array([output_value(r, o["key"]) for _, r in coarse.iterrows()])
+            b = np.array([output_value(r, o["key"]) for _, r in fine.iterrows()])
+            sa, sb = float(np.std(a, ddof=1)), float(np.std(b, ddof=1))
+            corr = float(np.corrcoef(a, b)[0, 1]) if sa > 0 and sb > 0 else float("nan")
+            out[oid] = {"points": len(x), "level": level, "mean_sampled": float(np.mean(a)),
+                        "mean_declared": float(np.mean(b)), "std_sampled": sa,
+                        "std_declared": sb, "ratio": sb / sa if sa > 0 else float("nan"),
+                        "corr": corr}
+    return out
+
+
+def _mesh_uncertainty(scene: dict, study: dict, outputs: dict[str, dict], nominal: dict,
                       client, jobs) -> dict[str, dict[str, Any]]:
-    """``u_num`` per output from the declared mesh levels by the project's GCI rule (formal
-    order 2), as a standard uncertainty ``GCI / 2`` (the GCI taken as a 95 % expanded
-    uncertainty, as the project's evidence page does); a series the rule refuses (not
+    """``u_num`` per output of one scene from the declared mesh levels by the project's GCI
+    rule (formal order 2), as a standard uncertainty ``GCI / 2`` (the GCI taken as a 95 %
+    expanded uncertainty, as the project's evidence page does); a series the rule refuses (not
     asymptotic) gets ``3 |f_1 - f_1/2| / 2``, the last increment with the safety factor 3,
     and says so."""
-    nx, ny = study["mesh"]["nx"], study["mesh"]["ny"]
     levels = study["mesh_levels"]
-    over = [{**study["set"], "mesh.nx": round(nx * lv), "mesh.ny": max(2, round(ny * lv))}
-            for lv in levels]
-    df = sweep(scene, over, client=client, jobs=jobs)
+    over = [{**study["set"], **_at_level(scene, lv)} for lv in levels]
+    df = sweep(scene["path"], over, client=client, jobs=jobs)
     out = {}
-    for key in outputs:
-        values = [output_value(r, key) for _, r in df.iterrows()]
-        fine = output_value(nominal, key)
+    for oid, o in outputs.items():
+        values = [output_value(r, o["key"]) for _, r in df.iterrows()]
+        fine = output_value(nominal, o["key"])
         try:
             g, fs, p, orders = _impact.gci(values, 2.0, 2.0)
             u = 0.5 * g * abs(fine)
@@ -152,8 +222,16 @@ def _mesh_uncertainty(scene: str, study: dict, outputs: list[str], nominal: dict
             u = 0.5 * 3.0 * abs(values[-1] - values[-2])
             why = str(e).split(": ")[1] if ": " in str(e) else str(e)
             how = f"no GCI, not asymptotic ({why}): Fs 3 x the last increment"
-        out[key] = {"levels": levels, "values": values, "u_num": u, "how": how}
+        out[oid] = {"levels": levels, "values": values, "u_num": u, "how": how}
     return out
+
+
+def read(study: str | os.PathLike[str]) -> dict[str, Any]:
+    """The validated declaration as a dict (``outputs`` keyed by their id, in declared
+    order); raises SceneError with the place of what the rules refuse."""
+    decl = json.loads(_impact.read_study(os.fspath(study)))
+    decl["outputs"] = {o["id"]: o for o in decl["outputs"]}
+    return decl
 
 
 def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
@@ -173,42 +251,55 @@ def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
     """
     import pandas
 
+    from ._run import simulate
+
     t0 = time.perf_counter()
-    decl = json.loads(_impact.read_study(os.fspath(study)))
-    scene = decl["scene"]
+    decl = read(study)
+    scenes = decl["scenes"]
     inputs = decl["inputs"]
     keys = [i["key"] for i in inputs]
     maps = [ppf(i["kind"], i["distribution"]) for i in inputs]
     d = len(inputs)
     samp = decl["sampling"]
     sizes = list(sizes or samp["sizes"])
-    outputs = list(decl["outputs"])
-    frames: list[pandas.DataFrame] = []
+    outputs = decl["outputs"]
+    level = samp.get("mesh")
+    fixed = [{**decl["set"], **(_at_level(sc, level) if level else {})} for sc in scenes]
+    frames: list[list[pandas.DataFrame]] = [[] for _ in scenes]
     steps: list[Step] = []
     converged_at = None
     done = 0
     for n in sizes:
         u = saltelli(samp["method"], d, n, samp["seed"])
         if samp["method"] != "sobol":
-            frames, done = [], 0
+            frames, done = [[] for _ in scenes], 0
         x = np.column_stack([m(u[done:, j]) for j, m in enumerate(maps)])
-        frames.append(_run_rows(scene, decl["set"], keys, x, client, jobs))
+        for sc, set_, fr in zip(scenes, fixed, frames):
+            fr.append(_run_rows(sc["path"], set_, keys, x, client, jobs))
         done = len(u)
-        df = pandas.concat(frames, ignore_index=True)
-        stats = {k: _estimates(np.array([output_value(r, k) for _, r in df.iterrows()]), d, n,
-                               keys, samp["seed"]) for k in outputs}
+        per_scene = [pandas.concat(fr, ignore_index=True) for fr in frames]
+        stats = {oid: _estimates(np.array([output_value(r, o["key"])
+                                           for _, r in per_scene[o["scene"]].iterrows()]),
+                                 d, n, keys, samp["seed"]) for oid, o in outputs.items()}
         ok = bool(steps) and all(_converged(steps[-1].stats[k], stats[k], decl["convergence"])
                                  for k in outputs)
-        steps.append(Step(n=n, runs=len(df), stats=stats, converged=ok))
+        steps.append(Step(n=n, runs=sum(len(f) for f in per_scene), stats=stats, converged=ok))
         if ok:
             converged_at = n
             break
-    from ._run import simulate
-
-    nominal = simulate(scene, threads=1, overrides=decl["set"]).summary
-    result = UQResult(study=decl, samples=pandas.concat(frames, ignore_index=True), steps=steps,
-                      converged_at=converged_at, nominal=nominal)
+    nominal = [simulate(sc["path"], threads=1, overrides=decl["set"]).summary for sc in scenes]
+    samples = pandas.concat([pandas.concat(fr, ignore_index=True).assign(scene=sc["label"])
+                             for sc, fr in zip(scenes, frames)], ignore_index=True)
+    result = UQResult(study=decl, samples=samples, steps=steps, converged_at=converged_at,
+                      nominal=nominal)
+    if level:
+        n0 = sizes[0]
+        u0 = saltelli(samp["method"], d, n0, samp["seed"])[propagation_rows(d, n0)]
+        x0 = np.column_stack([m(u0[:, j]) for j, m in enumerate(maps)])
+        result.spread_check = _spread_check(decl, x0, keys, client, jobs)
     if mesh:
-        result.mesh = _mesh_uncertainty(scene, decl, outputs, nominal, client, jobs)
+        for i, sc in enumerate(scenes):
+            mine = {oid: o for oid, o in outputs.items() if o["scene"] == i}
+            result.mesh.update(_mesh_uncertainty(sc, decl, mine, nominal[i], client, jobs))
     result.wall_time_s = time.perf_counter() - t0
     return result

@@ -193,6 +193,25 @@ def test_rate_laws_run_from_a_dict_scene(small_scene, cli, tmp_path):
         impact.simulate(scene)
 
 
+def test_finite_kinematics_runs_from_a_dict_scene(small_scene, cli, tmp_path):
+    """kinematics: finite from Python (a dict scene): the CLI's bits, the summary says so, the
+    deflection differs from small kinematics, and a wrong word is refused naming the field."""
+    scene = yaml.safe_load(small_scene.read_text())
+    small = impact.simulate(scene)
+    assert "kinematics" not in small.summary
+    scene["kinematics"] = "finite"
+    run = impact.simulate(scene)
+    assert run.summary["kinematics"] == "finite"
+    assert run.summary["max_plate_displacement_m"] != small.summary["max_plate_displacement_m"]
+    path = tmp_path / "finite.yaml"
+    path.write_text(yaml.safe_dump(scene))
+    subprocess.run([cli, "simulate", path, "--out", tmp_path / "cli", "--quiet"], check=True)
+    assert without_timing(run.summary) == without_timing(read_summary(tmp_path / "cli" / "summary.json"))
+    scene["kinematics"] = "large"
+    with pytest.raises(impact.SceneError, match="kinematics"):
+        impact.simulate(scene)
+
+
 @pytest.mark.parametrize("to_folder", [False, True])
 def test_ctrl_c_stops_a_run_within_a_second(small_scene, tmp_path, to_folder):
     """A real SIGINT while a long run holds no GIL: KeyboardInterrupt within about a second

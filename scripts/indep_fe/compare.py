@@ -137,6 +137,10 @@ def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, f
     if "max_energy_balance_error" in sa and "max_energy_balance_error" in sb:
         ea, eb = sa["max_energy_balance_error"], sb["max_energy_balance_error"]
         rows.append(("max_energy_balance_error", ea, eb, abs(ea - eb)))   # already a ratio
+    # section 3c: summary.json names the kinematics of finite runs only (absent: small)
+    ka, kb = sa.get("kinematics", "small"), sb.get("kinematics", "small")
+    if ka != kb:
+        problems.append(f"kinematics differs: {ka} vs {kb}")
     for k in SUMMARY_EXACT:
         if k in sa and k in sb:
             r = rel(sa[k], sb[k])

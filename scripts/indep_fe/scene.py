@@ -138,6 +138,10 @@ class Scene:
     pulse: Pulse | None
     time: TimeSpec
     output: Output
+    kinematics: str = "small"    # small (sections 2-3) | finite (section 3c)
+
+
+KINEMATICS = ("small", "finite")
 
 
 def _refuse_unknown(d: dict, known: set[str], where: str) -> None:
@@ -456,15 +460,18 @@ def _parse_output(data: dict, plate: Plate) -> Output:
 def parse_scene(data: dict) -> Scene:
     if not isinstance(data, dict):
         raise SceneError("scene must be a YAML mapping")
-    _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title"},
-                    "scene")
+    _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title",
+                           "kinematics"}, "scene")
+    kinematics = str(data.get("kinematics", "small"))
+    if kinematics not in KINEMATICS:
+        raise SceneError(f"kinematics must be small | finite, got {kinematics!r}")
     plate = _parse_plate(data)
     material = _parse_material(data)
     mesh = _parse_mesh(data)
     impactor, pulse = _parse_load(data)
     ts = _parse_time(data)
     output = _parse_output(data, plate)
-    return Scene(plate, material, mesh, impactor, pulse, ts, output)
+    return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics)
 
 
 def load_scene(path: str | Path) -> Scene:

@@ -14,6 +14,7 @@ import numpy as np
 from .contact import make_law
 from .elements import (elastic_matrix, element_eigenvalues, formulation, global_operators,
                        kinematics, lumped_mass)
+from .finite import CHECK_EVERY, FiniteKinematics, inverted_element
 from .material import MaterialModel, lame, von_mises
 from .mesh import build_mesh, find_element
 from .scene import Scene
@@ -99,6 +100,7 @@ class _Plate:
     ngp: int
     dt_plate: float                       # the plate's critical step (section 4)
     nose: SurfaceNose | None = None       # the surface coupling (section 5b)
+    finite: FiniteKinematics | None = None  # kinematics: finite (section 3c)
 
 
 def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
@@ -131,10 +133,12 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
 
     Bg, G = global_operators(form, pm)
     nel, ngp = form.B.shape[:2]
+    finite = (FiniteKinematics(ms.element, pm, kin, W) if scene.kinematics == "finite"
+              else None)
     pl = _Plate(pm=pm, form=form, Bg=Bg, BgT=Bg.T.tocsr(), G=G,
                 GT=G.T.tocsr() if G is not None else None, m_dof=m_dof,
                 inv_m=inv_m, s=pm.symmetry, w_flat=form.w.ravel(),
-                ngp=ngp, dt_plate=dt_plate, nose=nose)
+                ngp=ngp, dt_plate=dt_plate, nose=nose, finite=finite)
     return pl, MaterialModel(mat, nel * ngp, dt), dt, dt_crit
 
 
@@ -260,16 +264,37 @@ class _Balance:
 
 def _internal_forces(pl: _Plate, material: MaterialModel, u: np.ndarray):
     """Step 1: stresses and internal forces at u_n (material update, once per step); returns
-    (stress, strain energy, plastic work increment, f_int, hourglass energy)."""
-    eps = (pl.Bg @ u).reshape(-1, 4)
-    stress, strain_energy, dwork = material.update(eps, pl.w_flat)
-    f_int = pl.BgT @ (pl.w_flat[:, None] * stress).ravel()
+    (stress, strain energy, plastic work increment, f_int, hourglass energy). Under finite
+    kinematics (section 3c) the stress is the Cauchy stress and the hourglass term is added
+    unchanged on the total displacements."""
+    if pl.finite is not None:
+        stress, strain_energy, dwork, f_int = pl.finite.update(u, material)
+    else:
+        eps = (pl.Bg @ u).reshape(-1, 4)
+        stress, strain_energy, dwork = material.update(eps, pl.w_flat)
+        f_int = pl.BgT @ (pl.w_flat[:, None] * stress).ravel()
     hg_energy = 0.0
     if pl.G is not None:
         q = (pl.G @ u).reshape(-1, 2)
         f_int += pl.GT @ (pl.form.k_hg[:, None] * q).ravel()
         hg_energy = 0.5 * float(np.sum(pl.form.k_hg * (q[:, 0] ** 2 + q[:, 1] ** 2)))
     return stress, strain_energy, dwork, f_int, hg_energy
+
+
+def _check_mesh(pl: _Plate, u: np.ndarray, n: int, t: float, dt: float,
+                allow_unstable_dt: bool) -> None:
+    """Every 32 steps and at the last (sections 7, 3c): an inverted element stops the run; under
+    finite kinematics so does a step above the deformed mesh's estimate
+    dt_plate min_e sqrt(S_ref / S_cur) (unless time.allow_unstable_dt)."""
+    e = inverted_element(pl.pm, u)
+    if e is not None:
+        raise UnstableRun(f"element {e} inverted at step {n} (t = {t:.6e} s)")
+    if pl.finite is not None and not allow_unstable_dt:
+        factor, e = pl.finite.step_factor(u)
+        if dt > pl.dt_plate * factor:
+            raise UnstableRun(f"at step {n} (t = {t:.6e} s) the deformed mesh's stable step "
+                              f"{pl.dt_plate * factor:.6e} s (element {e}) is below dt = "
+                              f"{dt:.6e} s")
 
 
 def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
@@ -305,6 +330,7 @@ def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
         "n_elements": pl.pm.n_elements,
         "n_nodes": pl.pm.n_nodes,
         "element": scene.mesh.element,
+        **({"kinematics": "finite"} if pl.finite is not None else {}),
         "model": scene.mesh.model,
         "contact_law": law.description if law is not None else None,
         "final_plastic_work_J": pl.s * totals["plastic_work"],
@@ -399,6 +425,8 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             e_con = body.law.energy(body.F) if body is not None else 0.0
         total = e_kin + e_imp + s * strain_energy + s * plastic_work + s * hg_energy + e_con
         imbalance = balance.record(n, t, total, W_ext, dt, dt_crit)
+        if n % CHECK_EVERY == 0 or last:
+            _check_mesh(pl, u, n, t, dt, scene.time.allow_unstable_dt)
 
         totals["peak_F"] = max(totals["peak_F"], load)
         totals["max_down"] = min(totals["max_down"], u[mid_uy])

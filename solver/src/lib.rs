@@ -24,8 +24,8 @@ pub use kernels::{assembly, batch, elastic_screen, row_batches, stiffness, worke
 pub use lanes::{heap, real, simd};
 pub use output::{out_dir, summary};
 pub use physics::{
-    centroid, contact, contact_failure, element, geometry, impactor, load, material,
-    rate_plasticity,
+    centroid, contact, contact_failure, element, finite_element, finite_material, geometry,
+    impactor, kinematics, load, material, rate_plasticity,
 };
 pub use time_loop::{
     energy, history, integrator, internal_forces, interrupt, model, progress, stable_step,

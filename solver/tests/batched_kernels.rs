@@ -9,6 +9,8 @@
 //!   elements past yield while others stay elastic, unload them and reverse them.
 //! - Whole runs: the example and paper scenes' summaries and histories, bit for bit, and the
 //!   Table 1 plate with Cowper-Symonds and with Johnson-Cook and heating.
+//! - Both kinematics: every combination above (but the small-strain stiffness matrices) also
+//!   under finite deformation, and the Table 1 plate under finite deformation.
 
 use std::path::Path;
 
@@ -18,7 +20,7 @@ use impact_solver::integrator::PlateModel;
 use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
 use impact_solver::model::{self, Kernel, UseModel};
-use impact_solver::scene::{ElementKind, Hardening, Plasticity};
+use impact_solver::scene::{ElementKind, Hardening, Kinematics, Plasticity};
 use impact_solver::simd::{Isa, KernelPath, LANES};
 use impact_solver::{simulate_on, History, Quiet, Scene};
 
@@ -185,8 +187,15 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
             ]
             .map(|k| (k, "linear"));
             let plastic = PLASTIC_VARIANTS.map(|v| (Kernel::Plastic, v));
-            for (kernel, table) in elastic.into_iter().chain(plastic) {
-                let s = scene(nx, ny, element, case as u64, table);
+            let both = elastic.into_iter().chain(plastic).flat_map(|k| {
+                [Kinematics::Small, Kinematics::Finite].map(|kinematics| (k, kinematics))
+            });
+            for ((kernel, table), kinematics) in both {
+                if kinematics == Kinematics::Finite && kernel == Kernel::ElasticStiffnessMatrix {
+                    continue;
+                }
+                let mut s = scene(nx, ny, element, case as u64, table);
+                s.kinematics = kinematics;
                 let mesh = PlateMesh::new(&s.plate, &s.mesh);
                 let u = fields(&mesh, &mut random, s.plate.length);
                 let reference =
@@ -196,7 +205,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
                     for (call, (a, b)) in reference.iter().zip(&traced).enumerate() {
                         assert!(
                             a == b,
-                            "{} {kernel:?} {table} {nx}x{ny} call {call} on {}: differs",
+                            "{} {kernel:?} {table} {kinematics:?} {nx}x{ny} call {call} on {}: differs",
                             element.name(),
                             path.name()
                         );
@@ -216,7 +225,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
             }
         }
     }
-    assert_eq!(yielded_and_elastic, 4 * 3 * PLASTIC_VARIANTS.len());
+    assert_eq!(yielded_and_elastic, 2 * 4 * 3 * PLASTIC_VARIANTS.len());
 }
 
 /// A whole run's summary without its timings, and its history.
@@ -239,8 +248,12 @@ fn whole_runs_are_bit_identical_on_both_paths() {
         ("paper-plastic", PAPER_PLASTIC),
         ("paper-plastic-cowper-symonds", PAPER_COWPER_SYMONDS),
         ("paper-plastic-johnson-cook-heating", PAPER_PLASTIC),
+        ("paper-plastic-finite", PAPER_PLASTIC),
     ] {
         let mut s = Scene::from_yaml(text, Path::new(name)).unwrap();
+        if name.ends_with("finite") {
+            s.kinematics = Kinematics::Finite;
+        }
         if name.contains("johnson-cook") {
             s.material.plasticity = Some(johnson_cook_heating());
             s.time.end = impact_solver::scene::End::At(1e-3);

@@ -126,6 +126,20 @@ fn structural_errors_name_line_and_column() {
     let e = error_for(|s| s.replace("q4-sri", "q4-quadratic"));
     assert_mentions(&e, &["bad.yaml:8:", "q4-quadratic"]);
     assert!(!e.contains("DuplicateKeyPolicy"));
+    // kinematics: the two words, the wrong one named where it is.
+    let e = error_for(|s| format!("{s}kinematics: large\n"));
+    assert_mentions(
+        &e,
+        &["bad.yaml:", ":13", "kinematics", "large", "small", "finite"],
+    );
+    let ok = Scene::from_yaml(
+        &format!("{EXAMPLE}kinematics: finite\n"),
+        Path::new("k.yaml"),
+    );
+    assert_eq!(
+        ok.unwrap().kinematics,
+        impact_solver::scene::Kinematics::Finite
+    );
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -35,6 +35,33 @@ pub struct SceneFile {
     pub time: TimeFile,
     #[serde(default)]
     pub output: OutputFile,
+    /// `small` (default: the paper's model) or `finite`.
+    #[serde(default)]
+    pub kinematics: Kinematics,
+}
+
+/// How the plate deforms: small strains and rotations (the paper's model, eqs. 13-16), or
+/// finite deformation (updated Lagrangian, Green-Naghdi rate: `ALGORITHM.md` section 3c).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kinematics {
+    #[default]
+    Small,
+    Finite,
+}
+
+impl Kinematics {
+    /// The name in scenes and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kinematics::Small => "small",
+            Kinematics::Finite => "finite",
+        }
+    }
+
+    pub fn is_small(&self) -> bool {
+        *self == Kinematics::Small
+    }
 }
 
 /// `plate: {length, width, thickness, ends}`, lengths in m; `length` is clamp to clamp,
@@ -498,6 +525,7 @@ pub struct Scene {
     /// Inputs accepted that look wrong (units, options that do nothing here), in the order
     /// [`crate::input::plausibility::warnings`] finds them.
     pub warnings: Vec<Warning>,
+    pub kinematics: Kinematics,
 }
 
 /// Plate dimensions (m) and end supports.
@@ -954,6 +982,7 @@ impl<'a> Validator<'a> {
             output,
             fields: self.spans.take(),
             warnings: Vec::new(),
+            kinematics: file.kinematics,
         })
     }
 

@@ -76,18 +76,16 @@ fn join(block: &[(usize, String, bool)]) -> String {
     path
 }
 
-/// `key: rest` -> (key, rest after the colon); `None` for a line without a plain key. A key in
-/// double quotes (`"plate": {`, JSON as the Python package writes dict scenes) is its text.
+/// `key: rest` -> (key, rest after the colon); `None` for a line without a plain key. A key
+/// in double quotes counts as its text: the Python package hands dict scenes over as JSON
+/// (`"kinematics": "large"`), whose fields must be named as a file's are.
 fn split_key(s: &str) -> Option<(&str, &str)> {
-    if let Some(quoted) = s.strip_prefix('"') {
-        let close = quoted.find('"')?;
-        let after = quoted[close + 1..].strip_prefix(':')?;
-        let key = &quoted[..close];
-        let ok = !key.is_empty() && (after.is_empty() || after.starts_with(' '));
-        return ok.then_some((key, after));
-    }
     let colon = s.find(':')?;
-    let key = s[..colon].trim();
+    let raw = s[..colon].trim();
+    let key = raw
+        .strip_prefix('"')
+        .and_then(|k| k.strip_suffix('"'))
+        .unwrap_or(raw);
     let ok = !key.is_empty()
         && key
             .chars()
@@ -190,6 +188,15 @@ pub fn explain(message: &str, field: &str) -> String {
         }
         m if m.starts_with("non-finite float") => "must be a finite number".to_string(),
         "expected string key for externally tagged enum"
+        | "externally tagged enum expected scalar or mapping"
+            if words(leaf).is_some() =>
+        {
+            format!(
+                "expected one word, {}, not a list or a mapping",
+                words(leaf).unwrap_or_default()
+            )
+        }
+        "expected string key for externally tagged enum"
         | "externally tagged enum expected scalar or mapping" => {
             format!("expected one kind written as a mapping: {}", kinds(leaf))
         }
@@ -207,6 +214,10 @@ pub fn explain(message: &str, field: &str) -> String {
             "expected its keys (`key: value` lines indented under it, or `{key: value, ...}`), not a single value or a list".to_string()
         }
         "expected sequence start" => "expected a list (`[a, b, ...]`)".to_string(),
+        "unexpected value for unit enum variant" => {
+            let key = parent.rsplit('.').next().unwrap_or(parent);
+            format!("`{leaf}` takes no settings: write `{key}: {leaf}`")
+        }
         "invalid boolean" => "expected true or false".to_string(),
         m if m.starts_with("tabs disallowed") => {
             "a tab in the indentation: YAML indents with spaces only".to_string()
@@ -486,6 +497,19 @@ fn closing_quote(line: &str, start: usize, quote: char) -> Option<usize> {
 
 const OTHER_KINDS: &str = "one key naming the kind, with its settings";
 
+/// The scene's choices written as one word, by the field's last key.
+fn words(leaf: &str) -> Option<&'static str> {
+    Some(match leaf {
+        "kinematics" => "`small` or `finite`",
+        "model" => "`half` or `full`",
+        "ends" => "`clamped`, `roller` or `slider`",
+        "indentation_datum" | "force_node" => "`mid-plane` or `top-surface`",
+        "estimate" => "`element` or `global`",
+        "enforcement" => "`kinematic` or `penalty`",
+        _ => return None,
+    })
+}
+
 /// The one-kind mappings of the scene, in words, by the field's last key.
 fn kinds(leaf: &str) -> &'static str {
     match leaf {
@@ -526,6 +550,15 @@ output:
         assert_eq!(field_at(SCENE, 8, 3), "load.pulse");
         assert_eq!(field_at(SCENE, 10, 27), "output.probes.A.y");
         assert_eq!(field_at(SCENE, 1, 8), "title");
+    }
+
+    /// A dict scene from Python arrives as indented JSON: its quoted keys name the field as a
+    /// file's do (before, `<dict>:56:17: unknown variant ...` named none).
+    #[test]
+    fn fields_are_found_in_indented_json() {
+        let json = "{\n  \"mesh\": {\n    \"nx\": \"abc\",\n    \"ny\": 16\n  },\n  \"kinematics\": \"large\"\n}";
+        assert_eq!(field_at(json, 3, 11), "mesh.nx");
+        assert_eq!(field_at(json, 6, 17), "kinematics");
     }
 
     #[test]

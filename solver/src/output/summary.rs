@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::input::scene::{
-    ContactLawChoice, ElementKind, Enforcement, Load, MidSpanNode, Model, Scene,
+    ContactLawChoice, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model, Scene,
 };
 use crate::mesh::PlateMesh;
 use crate::time_loop::energy::Energies;
@@ -65,6 +65,9 @@ pub struct Summary {
     pub final_time: f64,
     pub stop_reason: StopReason,
     pub element: ElementKind,
+    /// Written for finite deformation only, so that small-strain summaries keep their bits.
+    #[serde(skip_serializing_if = "Kinematics::is_small")]
+    pub kinematics: Kinematics,
     pub model: Model,
     pub plastic: bool,
     /// e.g. `paper(length_unit=0.001 m)`, `johnson(datum_depth=0.01 m)`, `pulse`.
@@ -163,6 +166,7 @@ impl Summary {
             final_time: t.final_time,
             stop_reason: t.stop,
             element: scene.mesh.element,
+            kinematics: scene.kinematics,
             model: scene.mesh.model,
             plastic: scene.is_plastic(),
             contact_law,

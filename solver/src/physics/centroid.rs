@@ -137,6 +137,37 @@ impl CentroidGeometry<Lanes> {
     }
 }
 
+/// The finite-deformation operators ([`crate::physics::kinematics`]) at the centroid, in the
+/// difference form of the one-point element's.
+impl CentroidGeometry<Lanes> {
+    /// Displacement gradient `du/dX` at `at`, row-major `[xX, xY, yX, yY]`.
+    #[inline(always)]
+    pub fn gradient<R: Real>(&self, at: usize, u: &Vector<R>) -> [R; 4] {
+        let (dx0, dy0) = self.derivatives::<R>(0, at);
+        let (dx1, dy1) = self.derivatives::<R>(1, at);
+        let (x0, y0, x1, y1) = (u[0] - u[4], u[1] - u[5], u[2] - u[6], u[3] - u[7]);
+        [
+            dx0 * x0 + dx1 * x1,
+            dy0 * x0 + dy1 * x1,
+            dx0 * y0 + dx1 * y1,
+            dy0 * y0 + dy1 * y1,
+        ]
+    }
+
+    /// Adds `P dN_a/dX` (first Piola-Kirchhoff stress `P`, row-major `[xX, xY, yX, yY]`, Pa)
+    /// to `f`: N when this geometry is weighted by the volume (m^3).
+    #[inline(always)]
+    pub fn add_piola<R: Real>(&self, at: usize, p: &[R; 4], f: &mut Vector<R>) {
+        let mut add = [R::splat(0.0); 4];
+        for a in 0..2 {
+            let (dx, dy) = self.derivatives::<R>(a, at);
+            add[2 * a] = p[0] * dx + p[1] * dy;
+            add[2 * a + 1] = p[2] * dx + p[3] * dy;
+        }
+        add_antisymmetric(f, add);
+    }
+}
+
 /// Adds nodes 0 and 1's terms `add` to their entries of `f` and subtracts them from nodes 2
 /// and 3's (whose terms are theirs negated: `+= -x` is `-= x`).
 #[inline(always)]

@@ -177,13 +177,43 @@ pub trait Formulation: Sync + 'static {
     fn volume(&self, e: usize) -> f64;
     /// Heap bytes of the connectivity and the geometry.
     fn heap_bytes(&self) -> usize;
+    /// Internal nodal forces and energies of `at`, updating its points' material states
+    /// ([`response`]); small strain ([`small_strain_response`]) unless the formulation is a
+    /// finite-deformation one ([`crate::physics::finite_element::UpdatedLagrangian`]).
+    #[inline(always)]
+    fn response<M: ConstitutiveModel, R: Real>(
+        &self,
+        material: &M,
+        at: usize,
+        u: &Vector<R>,
+        states: (&mut [M::Batch], R::Mask),
+    ) -> (Vector<R>, Energy<R>)
+    where
+        Self: Sized,
+    {
+        small_strain_response(self, material, at, u, states)
+    }
 }
 
 /// Internal nodal forces and energies of `at` ([`Formulation`]), updating the material
 /// states of its points: point `p`'s are `batches[p]` (the batch that holds `at`), written
-/// where `active` has the lane (inactive lanes: states untouched, results unspecified).
+/// where `active` has the lane (inactive lanes: states untouched, results unspecified). The
+/// formulation's [`Formulation::response`]: small strain unless it says otherwise.
 #[inline(always)]
 pub fn response<F: Formulation, M: ConstitutiveModel, R: Real>(
+    formulation: &F,
+    material: &M,
+    at: usize,
+    u: &Vector<R>,
+    states: (&mut [M::Batch], R::Mask),
+) -> (Vector<R>, Energy<R>) {
+    formulation.response(material, at, u, states)
+}
+
+/// [`response`] in small strain (eqs. 13-14): strain, material update and `w B^T s` point by
+/// point.
+#[inline(always)]
+pub fn small_strain_response<F: Formulation, M: ConstitutiveModel, R: Real>(
     formulation: &F,
     material: &M,
     at: usize,
@@ -321,7 +351,7 @@ pub struct FullQ4 {
     /// The Gauss points' geometry.
     points: SharedBatches<[PointGeometry<Lanes>; 4]>,
     /// Out-of-plane thickness, m.
-    width: f64,
+    pub(crate) width: f64,
 }
 
 impl FullQ4 {
@@ -344,7 +374,7 @@ impl FullQ4 {
 
     /// The Gauss points of the batch that holds `at`.
     #[inline(always)]
-    fn points<R: Real>(&self, at: usize) -> &[PointGeometry<Lanes>; 4] {
+    pub(crate) fn points<R: Real>(&self, at: usize) -> &[PointGeometry<Lanes>; 4] {
         self.points.batch::<R>(at)
     }
 }
@@ -391,8 +421,8 @@ impl Formulation for FullQ4 {
 
 /// Selective-reduced integration (B-bar): 2x2 deviatoric, centroid volumetric.
 pub struct SelectiveQ4 {
-    full: FullQ4,
-    centroid: SharedBatches<CentroidGeometry<Lanes>>,
+    pub(crate) full: FullQ4,
+    pub(crate) centroid: SharedBatches<CentroidGeometry<Lanes>>,
 }
 
 impl SelectiveQ4 {
@@ -473,18 +503,18 @@ impl Formulation for SelectiveQ4 {
 pub struct OnePointQ4 {
     nodes: Vec<[u32; 4]>,
     /// The centroid, volume, hourglass vectors and stiffness.
-    data: SharedBatches<OnePoint<Lanes>>,
+    pub(crate) data: SharedBatches<OnePoint<Lanes>>,
 }
 
 /// [`OnePointQ4`]'s data of [`Real::LANES`] elements.
 #[derive(Debug, Clone, Copy, Default)]
-struct OnePoint<R> {
+pub(crate) struct OnePoint<R> {
     /// The derivatives at the centroid, 1/m, for the strain.
-    centroid: CentroidGeometry<R>,
+    pub(crate) centroid: CentroidGeometry<R>,
     /// The same times the volume, m^2, for the forces `w B^T s`.
-    weighted: CentroidGeometry<R>,
+    pub(crate) weighted: CentroidGeometry<R>,
     /// Element volume, m^3.
-    volume: R,
+    pub(crate) volume: R,
     /// Hourglass base vectors gamma_a (dimensionless).
     gamma: [R; 4],
     /// Hourglass stiffness, N/m.

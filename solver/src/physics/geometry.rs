@@ -120,6 +120,38 @@ impl PointGeometry<Lanes> {
         d
     }
 
+    /// Displacement gradient `du/dX` at `at`, row-major `[xX, xY, yX, yY]`
+    /// ([`crate::physics::kinematics::Gradient`]; `X` the coordinates this geometry was made on).
+    #[inline(always)]
+    pub fn gradient<R: Real>(&self, at: usize, u: &Vector<R>) -> [R; 4] {
+        let zero = R::splat(0.0);
+        let mut g = [zero; 4];
+        for a in 0..4 {
+            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
+            let (dx, dy) = (self.dndx::<R>(a, at), self.dndy::<R>(a, at));
+            g[0] += dx * ux;
+            g[1] += dy * ux;
+            g[2] += dx * uy;
+            g[3] += dy * uy;
+        }
+        g
+    }
+
+    /// Adds `w P dN_a/dX` (first Piola-Kirchhoff stress `P`, row-major `[xX, xY, yX, yY]`,
+    /// Pa; reference weight `w`, m^3) at `at` to `f` (N).
+    #[inline(always)]
+    pub fn add_piola<R: Real>(&self, at: usize, w: R, p: &[R; 4], f: &mut Vector<R>) {
+        let mut add = [R::splat(0.0); 8];
+        for a in 0..4 {
+            let (dx, dy) = (self.dndx::<R>(a, at), self.dndy::<R>(a, at));
+            add[2 * a] = w * (p[0] * dx + p[1] * dy);
+            add[2 * a + 1] = w * (p[2] * dx + p[3] * dy);
+        }
+        for (x, add) in f.iter_mut().zip(add) {
+            *x += add;
+        }
+    }
+
     /// Adds `w B^T s` (in-plane stress components, Pa; weight `w`, m^3) at `at` to `f` (N).
     #[inline(always)]
     pub fn add_divergence<R: Real>(&self, at: usize, w: R, s: &[R; 4], f: &mut Vector<R>) {

@@ -7,6 +7,7 @@
 use crate::input::scene::{Hardening, Material as MaterialSpec};
 use crate::lanes::real::{Real, THIRD};
 use crate::lanes::simd::Lanes;
+use crate::physics::kinematics::Memory;
 
 pub type Strain = [f64; 4];
 pub type Stress = [f64; 4];
@@ -79,6 +80,15 @@ pub trait ConstitutiveModel: Sync + 'static {
     }
     /// A heating model's temperature (K); `None` for a model without temperature.
     fn temperature(&self, _state: &Self::State) -> Option<f64> {
+        None
+    }
+    /// Whether the model keeps a finite-deformation memory per point
+    /// ([`crate::physics::finite_material::Finite`]); a finite-deformation formulation paired
+    /// with one that does not gives the small-strain response (the linearisation about the
+    /// reference configuration: stiffness matrices and stable-step bounds use it).
+    const KEEPS_MEMORY: bool = false;
+    /// The finite-deformation memory in a point's batch; `None` for a model without one.
+    fn memory(_batch: &mut Self::Batch) -> Option<&mut Memory<Lanes>> {
         None
     }
 }

@@ -3,14 +3,19 @@
 //! form [`rate_plasticity`]), the rigid impactor
 //! ([`impactor`], eqs. 19-20), its contact law and the solve of eq. (21) ([`contact`], with the
 //! reasons a solve fails in [`contact_failure`]), the rigid nose in surface contact
-//! ([`nose_contact`]), and prescribed loads ([`load`]).
+//! ([`nose_contact`]), and prescribed loads ([`load`]). Finite deformation: the kinematics of a
+//! point ([`kinematics`]), the elements ([`finite_element`]) and materials ([`finite_material`])
+//! that use it.
 
 pub mod centroid;
 pub mod contact;
 pub mod contact_failure;
 pub mod element;
+pub mod finite_element;
+pub mod finite_material;
 pub mod geometry;
 pub mod impactor;
+pub mod kinematics;
 pub mod load;
 pub mod material;
 pub mod nose_contact;

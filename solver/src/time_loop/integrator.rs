@@ -5,7 +5,7 @@
 use std::result::Result as StdResult;
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::{DtChoice, End, Impactor, Scene};
+use crate::input::scene::{DtChoice, End, Impactor, Kinematics, Scene};
 use crate::kernels::assembly::Assembly;
 use crate::kernels::elastic_screen::ElasticScreen;
 use crate::kernels::stiffness::LinearKernel;
@@ -277,6 +277,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         let energies = stepper.half_step(n, applied, element_energy);
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
         stepper.check_inversion(n, t, stop.is_some())?;
+        stepper.check_deformed_step(n, t, dt_plate)?;
         let at = stepper.sample(t, applied, &energies, imbalance);
         recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.probe(p))?;
         watch.step(n, t, stop.is_some(), &stepper)?;
@@ -631,11 +632,40 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             step: n,
             time_s: t,
             what: format!(
-                "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: the displacements are no longer small against the mesh (dt = {:.6e} s, {:.3} of the stable estimate)",
+                "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: {} (dt = {:.6e} s, {:.3} of the stable estimate)",
                 0.25 * (c[0][0] + c[1][0] + c[2][0] + c[3][0]),
                 0.25 * (c[0][1] + c[1][1] + c[2][1] + c[3][1]),
+                match self.scene.kinematics {
+                    Kinematics::Small => "the displacements are no longer small against the mesh (kinematics: finite follows large deformation)",
+                    Kinematics::Finite => "it was crushed or turned inside out (a finer mesh, or q4-sri instead of q4-1pt, may carry the deformation)",
+                },
                 self.dt,
                 self.dt / self.dt_critical
+            ),
+        })
+    }
+
+    /// Finite deformation: the run's step is fixed, so the run stops (naming the element)
+    /// when deformation has brought the plate's stable estimate `dt_plate` (s) times
+    /// [`stable_step::deformed_ratio`] below it, checked with the inversions (unless
+    /// `time.allow_unstable_dt`).
+    fn check_deformed_step(&self, n: u64, t: f64, dt_plate: f64) -> Result<()> {
+        let finite = self.scene.kinematics == Kinematics::Finite;
+        if !finite || self.scene.time.allow_unstable_dt || n % INVERSION_CHECK_EVERY != 0 {
+            return Ok(());
+        }
+        let (ratio, e) = stable_step::deformed_ratio(&self.mesh.mesh, &self.u);
+        if self.dt <= ratio * dt_plate {
+            return Ok(());
+        }
+        Err(Error::Run {
+            step: n,
+            time_s: t,
+            what: format!(
+                "the deformed mesh's stable step fell below the run's: element {e} is compressed to {ratio:.3} of its stable length, giving {:.6e} s against dt = {:.6e} s (the step is fixed for the run: start with a smaller time.dt.cfl, about {:.2} of this one or less)",
+                ratio * dt_plate,
+                self.dt,
+                ratio * dt_plate / self.dt
             ),
         })
     }

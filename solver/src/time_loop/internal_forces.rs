@@ -19,6 +19,8 @@ use crate::lanes::simd::{dispatch, KernelPath};
 use crate::physics::element::{
     gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
+use crate::physics::finite_element::UpdatedLagrangian;
+use crate::physics::finite_material::Finite;
 use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
 use crate::physics::rate_plasticity::ViscoPlastic;
 use crate::time_loop::integrator::PlateModel;
@@ -181,6 +183,15 @@ compiled! {
     full_rate: FullQ4, ViscoPlastic;
     selective_rate: SelectiveQ4, ViscoPlastic;
     one_point_rate: OnePointQ4, ViscoPlastic;
+    finite_full_elastic: UpdatedLagrangian<FullQ4>, Finite<Elastic>;
+    finite_full_plastic: UpdatedLagrangian<FullQ4>, Finite<VonMises>;
+    finite_full_rate: UpdatedLagrangian<FullQ4>, Finite<ViscoPlastic>;
+    finite_selective_elastic: UpdatedLagrangian<SelectiveQ4>, Finite<Elastic>;
+    finite_selective_plastic: UpdatedLagrangian<SelectiveQ4>, Finite<VonMises>;
+    finite_selective_rate: UpdatedLagrangian<SelectiveQ4>, Finite<ViscoPlastic>;
+    finite_one_point_elastic: UpdatedLagrangian<OnePointQ4>, Finite<Elastic>;
+    finite_one_point_plastic: UpdatedLagrangian<OnePointQ4>, Finite<VonMises>;
+    finite_one_point_rate: UpdatedLagrangian<OnePointQ4>, Finite<ViscoPlastic>;
 }
 
 #[cfg(test)]
@@ -220,5 +231,33 @@ mod tests {
         check(|| PlateModel::new(selective(), test_von_mises(), &mesh, 7850.0));
         check(|| PlateModel::new(one_point(), elastic, &mesh, 7850.0));
         check(|| PlateModel::new(one_point(), test_von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(UpdatedLagrangian(full()), Finite(elastic), &mesh, 7850.0));
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(full()),
+                Finite(test_von_mises()),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(selective()),
+                Finite(elastic),
+                &mesh,
+                7850.0,
+            )
+        });
+        let plastic = || Finite(test_von_mises());
+        check(|| PlateModel::new(UpdatedLagrangian(selective()), plastic(), &mesh, 7850.0));
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(one_point()),
+                Finite(elastic),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| PlateModel::new(UpdatedLagrangian(one_point()), plastic(), &mesh, 7850.0));
     }
 }

@@ -4,10 +4,12 @@
 //! dispatch over elements alone (static checks that need no material).
 
 use crate::input::error::{Error, Result, SourceLocation};
-use crate::input::scene::{ElementKind, Scene};
+use crate::input::scene::{ElementKind, Kinematics, Scene};
 use crate::lanes::simd::KernelPath;
 use crate::mesh::{Mesh, PlateMesh};
 use crate::physics::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use crate::physics::finite_element::{FiniteResponse, UpdatedLagrangian};
+use crate::physics::finite_material::Finite;
 use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
 use crate::physics::rate_plasticity::ViscoPlastic;
 use crate::time_loop::integrator::PlateModel;
@@ -122,7 +124,46 @@ pub fn build_on<U: UseModel>(
         kernel,
         path,
     };
-    with_formulation!(formulation, f => with_material(f, request, user))
+    match scene.kinematics {
+        Kinematics::Small => with_formulation!(formulation, f => with_material(f, request, user)),
+        Kinematics::Finite => {
+            if kernel == Kernel::ElasticStiffnessMatrix {
+                return Err(Error::invalid(
+                    SourceLocation::file(&scene.source),
+                    "kinematics",
+                    "finite",
+                    "the stiffness-matrix kernel is a small-strain one: use the stress path",
+                ));
+            }
+            with_formulation!(formulation, f => with_material(UpdatedLagrangian(f), request, user))
+        }
+    }
+}
+
+/// The material model a formulation runs with: the model itself in small strain, the model
+/// with a kinematic memory ([`Finite`]) under finite deformation.
+pub trait MaterialOf: Formulation {
+    type Material<M: ConstitutiveModel>: ConstitutiveModel;
+    fn material<M: ConstitutiveModel>(m: M) -> Self::Material<M>;
+}
+
+macro_rules! small_strain_material {
+    ($($f:ty),*) => {$(
+        impl MaterialOf for $f {
+            type Material<M: ConstitutiveModel> = M;
+            fn material<M: ConstitutiveModel>(m: M) -> M {
+                m
+            }
+        }
+    )*};
+}
+small_strain_material!(FullQ4, SelectiveQ4, OnePointQ4);
+
+impl<F: FiniteResponse> MaterialOf for UpdatedLagrangian<F> {
+    type Material<M: ConstitutiveModel> = Finite<M>;
+    fn material<M: ConstitutiveModel>(m: M) -> Finite<M> {
+        Finite(m)
+    }
 }
 
 /// A plastic model handed to `user`. Elastic points at elastic cost where the stiffness
@@ -152,7 +193,7 @@ struct Request<'a> {
     path: KernelPath,
 }
 
-fn with_material<F: Formulation, U: UseModel>(
+fn with_material<F: MaterialOf, U: UseModel>(
     formulation: F,
     Request {
         scene,
@@ -165,9 +206,11 @@ fn with_material<F: Formulation, U: UseModel>(
     let m = &scene.material;
     let plastic_kernel = matches!(kernel, Kernel::Solver | Kernel::Plastic);
     if let Some(rate) = ViscoPlastic::new(m).filter(|_| plastic_kernel) {
+        let rate = F::material(rate);
         return Ok(with_plastic(formulation, rate, mesh, m.density, path, user));
     }
     if let Some(plastic) = VonMises::new(m).filter(|_| plastic_kernel) {
+        let plastic = F::material(plastic);
         return Ok(with_plastic(
             formulation,
             plastic,
@@ -191,7 +234,8 @@ fn with_material<F: Formulation, U: UseModel>(
         _ => F::STIFFNESS_MATRIX_PAYS,
     };
     let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
-    let model = PlateModel::new(formulation, elastic, mesh, m.density).with_kernel_path(path);
+    let model =
+        PlateModel::new(formulation, F::material(elastic), mesh, m.density).with_kernel_path(path);
     Ok(user.use_model(if stiffness_matrix {
         model.with_linear_kernel(&elastic)
     } else {

@@ -9,8 +9,10 @@
 //!   step is multiplied by [`GLOBAL_SAFETY`].
 
 use crate::kernels::stiffness::LinearKernel;
+use crate::mesh::Mesh;
 use crate::physics::contact::LineContactLaw;
 use crate::physics::element::{element_max_eigenvalue, scatter_add, Formulation};
+use crate::physics::geometry::PointGeometry;
 use crate::physics::material::Elastic;
 
 pub use crate::input::scene::Estimate;
@@ -42,6 +44,34 @@ pub fn element_bound<F: Formulation>(formulation: &F, elastic: &Elastic, density
         .map(|e| element_max_eigenvalue(formulation, elastic, density, e))
         .fold(0.0, f64::max);
     2.0 / lambda_max.sqrt()
+}
+
+/// How far deformation has shortened the stable step, for finite deformation: the smallest
+/// over the elements of `sqrt(S_ref / S_cur)`, `S = sum_a |grad N_a|^2` at the centroid on the
+/// reference and the current (`u`, m) configuration, and that element. An element's highest
+/// frequency is `omega^2 ~ (lambda + 2 mu) S_cur / rho_0` (the forces `w_ref tau : grad_x N`
+/// with a Kirchhoff modulus and the reference mass), so its step scales by this ratio: by the
+/// stretch of a side compressed alone, 1 for a rigid motion.
+pub fn deformed_ratio(mesh: &Mesh, u: &[f64]) -> (f64, usize) {
+    let spread = |c: &[[f64; 2]; 4]| {
+        let g = PointGeometry::at(&c.map(|p| [p[0] - c[0][0], p[1] - c[0][1]]), [0.0, 0.0]);
+        (0..4)
+            .map(|a| g.dndx[a] * g.dndx[a] + g.dndy[a] * g.dndy[a])
+            .sum::<f64>()
+    };
+    let mut smallest = (f64::INFINITY, 0);
+    for (e, nodes) in mesh.elements.iter().enumerate() {
+        let reference = mesh.element_coords(e);
+        let current = std::array::from_fn(|a| {
+            let n = nodes[a] as usize;
+            [reference[a][0] + u[2 * n], reference[a][1] + u[2 * n + 1]]
+        });
+        let ratio = (spread(&reference) / spread(&current)).sqrt();
+        if ratio < smallest.0 {
+            smallest = (ratio, e);
+        }
+    }
+    smallest
 }
 
 /// The largest stiffness `dF/d alpha` (N/m, whole width) of the contact law up to the force

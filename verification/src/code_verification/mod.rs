@@ -9,9 +9,11 @@ pub mod collapse;
 pub mod column_impact;
 pub mod driver;
 pub mod element_eigen;
+pub mod finite_path;
 pub mod hertz_line;
 pub mod macneal_harder;
 pub mod manufactured;
+pub mod membrane;
 pub mod orders;
 pub mod plastic_path;
 pub mod rate_path;
@@ -29,7 +31,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 16] = [
+pub const NAMES: [&str; 18] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -46,6 +48,8 @@ pub const NAMES: [&str; 16] = [
     "hertz-line",
     "rate-strain-path",
     "viscoplastic-truss",
+    "finite-strain-path",
+    "membrane-regime",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -67,6 +71,8 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "hertz-line" => hertz_line::hertz_line(p),
         "rate-strain-path" => rate_path::rate_strain_path(p),
         "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
+        "finite-strain-path" => finite_path::finite_strain_path(p),
+        "membrane-regime" => membrane::membrane_regime(p),
         _ => return None,
     })
 }
@@ -102,6 +108,25 @@ pub(crate) fn param(p: &BTreeMap<String, Value>, k: &str, default: f64) -> Resul
         Some(v) => v
             .as_f64()
             .ok_or_else(|| format!("param {k}: {v} is not a number")),
+    }
+}
+
+/// A list of numbers parameter (or its default).
+pub(crate) fn param_numbers(
+    p: &BTreeMap<String, Value>,
+    k: &str,
+    default: &[f64],
+) -> Result<Vec<f64>, String> {
+    match p.get(k) {
+        None => Ok(default.to_vec()),
+        Some(Value::Array(a)) => a
+            .iter()
+            .map(|v| {
+                v.as_f64()
+                    .ok_or_else(|| format!("param {k}: {v} is not a number"))
+            })
+            .collect(),
+        Some(v) => Err(format!("param {k}: {v} is not a list of numbers")),
     }
 }
 

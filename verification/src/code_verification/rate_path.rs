@@ -32,7 +32,7 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::space_time::element;
-use super::{param, with_history};
+use super::{param, param_numbers, with_history};
 use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -211,11 +211,7 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
         }
         _ => law,
     };
-    let rates: Vec<f64> = match p.get("rates") {
-        None => vec![1.0, 10.0, 100.0],
-        Some(Value::Array(a)) => a.iter().filter_map(Value::as_f64).collect(),
-        Some(v) => return Err(format!("param rates: {v} is not a list of numbers")),
-    };
+    let rates = param_numbers(p, "rates", &[1.0, 10.0, 100.0])?;
     let mu = Elastic::new(STEEL.0, STEEL.1).mu;
     let yield_strain = match path {
         Path::UniaxialStrain => sigma0 / (2.0 * mu),
