@@ -15,12 +15,13 @@ names its unit (``time_s``, ``contact_force_N``, ``impulse_Ns``, ...).
 
 Scene errors raise :class:`SceneError` with the message of the ``impact`` command
 (``file:line:col: field = value: what is allowed``); a run that cannot go on raises
-:class:`RunError`.
+:class:`RunError`; an input that is accepted but looks wrong (units, an option that does
+nothing) warns with :class:`SceneWarning`.
 """
 from __future__ import annotations
 
 from ._impact import TIMING_KEYS, RunError, SceneError, VerifyError
-from ._run import Run, simulate
+from ._run import Run, SceneWarning, simulate
 from ._sweep import sweep
 from ._uq import StudyRunError, UQResult, uq
 from ._verify import Verification, verify
@@ -29,6 +30,7 @@ __all__ = [
     "Run",
     "RunError",
     "SceneError",
+    "SceneWarning",
     "StudyRunError",
     "TIMING_KEYS",
     "UQResult",

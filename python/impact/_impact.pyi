@@ -1,6 +1,8 @@
 """Stub of the native module `impact._impact` (Rust, pyo3). Use the documented functions of
 `impact` instead; these are their building blocks."""
 
+from typing import Callable
+
 import numpy as np
 import numpy.typing as npt
 
@@ -17,6 +19,7 @@ def simulate(
     out: str | None = None,
     threads: int | None = None,
     overrides: str | None = None,
+    warn: Callable[[str], None] | None = None,
 ) -> tuple[str, list[str], list[npt.NDArray[np.float64]]]: ...
 def verify(
     selectors: list[str],

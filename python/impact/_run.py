@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings
 from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
@@ -12,6 +13,18 @@ from ._scene import SceneLike, overrides_json, scene_text
 
 if TYPE_CHECKING:
     import pandas
+
+
+class SceneWarning(UserWarning):
+    """An input the scene accepts that looks wrong: units (a plate of 200 m, E of 2e5 Pa, a
+    density under 1 kg/m^3), an option that does nothing in the scene (``hourglass`` without
+    ``q4-1pt``, ``time.limit`` with a fixed end), output that swamps the run (a VTK frame every
+    step). The message is the CLI's ``warning:`` line: ``file:line:col: field = value: why``."""
+
+
+def _warn(message: str) -> None:
+    # stacklevel 3: the caller of impact.simulate (this function, then simulate).
+    warnings.warn(message, SceneWarning, stacklevel=3)
 
 
 class Run:
@@ -33,6 +46,13 @@ class Run:
     def __init__(self, summary: dict[str, Any], history: dict[str, np.ndarray]):
         self.summary = summary
         self.history = history
+
+    @property
+    def warnings(self) -> list[str]:
+        """The scene's plausibility warnings (``summary.json``'s ``warnings``; empty when none):
+        inputs whose units look wrong, options that do nothing in the scene, output that
+        swamps the run. Also raised as :class:`SceneWarning` by :func:`simulate`."""
+        return list(self.summary.get("warnings", []))
 
     def to_pandas(self) -> "pandas.DataFrame":
         """The history as a pandas DataFrame, one column per history column (needs pandas)."""
@@ -75,6 +95,10 @@ def simulate(
 
     The GIL is released while the solver runs, so threads of a pool run in parallel.
 
+    Warns:
+        SceneWarning: once per plausibility warning of the scene (before the run, also when
+            the run is then refused); they are kept in ``Run.warnings``.
+
     Raises:
         SceneError: the scene cannot be read, parsed or validated (message: the CLI's,
             ``file:line:col: field = value: what is allowed``).
@@ -90,6 +114,7 @@ def simulate(
         source,
         out=None if out is None else os.fspath(out),
         threads=threads,
-        overrides=overrides_json(overrides),
+        overrides=overrides_json(overrides, source),
+        warn=_warn,
     )
     return Run(json.loads(summary), dict(zip(columns, arrays)))

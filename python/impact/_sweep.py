@@ -67,18 +67,27 @@ def sweep(
 
     text, source = scene_text(scene)
     overrides = list(overrides)
-    payloads = [overrides_json(o) for o in overrides]
+    # An override the JSON cannot carry (NaN, inf) is that row's error; the others run.
+    refused: dict[int, str] = {}
+    payloads: list[str | None] = []
+    for i, o in enumerate(overrides):
+        try:
+            payloads.append(overrides_json(o, source))
+        except _impact.SceneError as e:
+            refused[i] = str(e)
     if client is None:
-        rows = _local(text, source, payloads, jobs)
+        ran = _local(text, source, payloads, jobs)
     elif jobs is not None:
         raise ValueError("jobs sets the local pool; with a Dask client its workers decide")
     elif isinstance(client, str):
         from distributed import Client
 
         with Client(client) as connected:
-            rows = _dask(connected, text, source, payloads)
+            ran = _dask(connected, text, source, payloads)
     else:
-        rows = _dask(client, text, source, payloads)
+        ran = _dask(client, text, source, payloads)
+    it = iter(ran)
+    rows = [{ERROR: refused[i]} if i in refused else next(it) for i in range(len(overrides))]
     keys = _ordered_keys(overrides)
     summary_keys = _ordered_keys([r for r in rows if r[ERROR] is None] or [{}])
     columns = keys + [k for k in summary_keys if k not in keys and k != ERROR] + [ERROR]

@@ -23,11 +23,12 @@ pub fn read_scene(path: PathBuf) -> PyResult<String> {
 type NativeRun<'py> = (String, Vec<String>, Vec<Bound<'py, PyArray1<f64>>>);
 
 /// Parses `text` (`source` names it in messages), sets `overrides` (a JSON object of dotted
-/// scene keys, see `Scene::from_yaml_with`), validates, runs it without the GIL on `threads`
-/// threads (None: the global pool, one thread per core) and, with `out`, writes the CLI's
-/// files there.
+/// scene keys, see `Scene::from_yaml_with`), validates, passes each plausibility warning's
+/// text to `warn` (before the run, also when it is then refused), runs it without the GIL on
+/// `threads` threads (None: the global pool, one thread per core) and, with `out`, writes the
+/// CLI's files there.
 #[pyfunction]
-#[pyo3(signature = (text, source, out=None, threads=None, overrides=None))]
+#[pyo3(signature = (text, source, out=None, threads=None, overrides=None, warn=None))]
 pub fn simulate<'py>(
     py: Python<'py>,
     text: &str,
@@ -35,6 +36,7 @@ pub fn simulate<'py>(
     out: Option<PathBuf>,
     threads: Option<Bound<'py, PyAny>>,
     overrides: Option<&str>,
+    warn: Option<Bound<'py, PyAny>>,
 ) -> PyResult<NativeRun<'py>> {
     let overrides: Overrides = match overrides {
         Some(json) => serde_json::from_str(json)
@@ -42,9 +44,14 @@ pub fn simulate<'py>(
         None => Overrides::new(),
     };
     let threads = threads.map(|t| thread_count(&t)).transpose()?;
+    let scene = Scene::from_yaml_with(text, &overrides, &source).map_err(to_py)?;
+    if let Some(warn) = &warn {
+        for w in &scene.warnings {
+            warn.call1((w.to_string(),))?;
+        }
+    }
     let signals = Arc::new(PythonSignals::default());
     let outcome = py.detach(|| {
-        let scene = Scene::from_yaml_with(text, &overrides, &source)?;
         let run = || run(&scene, out.as_deref(), &signals);
         match threads {
             Some(n) => impact_solver::workers::with_threads(n, run),

@@ -28,3 +28,13 @@ def cli() -> Path:
 @pytest.fixture(scope="session")
 def small_scene() -> Path:
     return SMALL
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    """The bad-input suite's counts by tool (test_bad_inputs.py), when it ran."""
+    got = getattr(config, "_bad_inputs", None)
+    if got:
+        import bad_inputs
+
+        results, seconds = got
+        terminalreporter.write_line(bad_inputs.summary_line(results, seconds))

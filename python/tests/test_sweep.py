@@ -56,6 +56,19 @@ def test_a_failed_run_is_a_row_with_its_error(small_scene):
     assert math.isnan(frame["material.density"].iloc[2])
 
 
+def test_a_nan_override_is_a_row_with_its_error(small_scene):
+    # JSON has no NaN: json.dumps wrote the word NaN, the solver raised ValueError ("overrides:
+    # expected value at line 1 column 22") and the whole sweep stopped (bad-input suite).
+    frame = impact.sweep(small_scene, [{"material.density": math.nan},
+                                       {"material.density": 7000.0},
+                                       {"material.plasticity": {"yield_stress": math.inf}}], jobs=2)
+    assert list(frame["error"].isna()) == [False, True, False]
+    assert "override material.density = nan: must be a finite number" in frame["error"].iloc[0]
+    assert "override material.plasticity" in frame["error"].iloc[2]
+    with pytest.raises(impact.SceneError, match="override material.density = inf"):
+        impact.simulate(small_scene, overrides={"material.density": math.inf})
+
+
 def test_a_dask_local_cluster_equals_serial(serial, small_scene):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,

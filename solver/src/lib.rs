@@ -119,8 +119,31 @@ pub fn simulate_on(
         sink,
     };
     let summary =
-        time_loop::model::build_on(scene, &mesh, time_loop::model::Kernel::Solver, path, run)??;
+        time_loop::model::build_on(scene, &mesh, time_loop::model::Kernel::Solver, path, run)
+            .and_then(|r| r)
+            .map_err(|e| with_extreme_inputs(scene, e))?;
     Ok((summary, mesh))
+}
+
+/// A run that failed on a scene holding inputs beyond any physical magnitude
+/// ([`input::plausibility::extreme_fields`]) says so: whatever the failure's own words (an
+/// element found degenerate, a contact law beyond its maximum), those inputs are its cause.
+fn with_extreme_inputs(scene: &Scene, e: Error) -> Error {
+    match e {
+        Error::Run { step, time_s, what } => {
+            let extreme = input::plausibility::extreme_inputs(scene);
+            let what = if extreme.is_empty() || what.contains("because of") {
+                what
+            } else {
+                format!(
+                    "{what} (the scene holds {}: beyond any physical value of this problem in SI units; give a physical value)",
+                    extreme.join(", ")
+                )
+            };
+            Error::Run { step, time_s, what }
+        }
+        other => other,
+    }
 }
 
 /// The time loop of a run, on whatever model the factory built.

@@ -190,7 +190,7 @@ fn a_run_that_fails_midway_leaves_nothing_behind() {
     assert_mentions(
         &e,
         &[
-            "with length_unit 0.00001 m",
+            "with length_unit 1e-5 m",
             "its maximum is",
             "18 kg at 10 m/s carries 9.000e2 J",
             "contact_law: {johnson: {datum_depth: 0.01}}",
@@ -467,7 +467,11 @@ fn a_time_step_that_makes_no_run_is_refused_before_the_run_naming_its_input() {
             .err()
             .unwrap_or_else(|| panic!("density {density}: no refusal"))
             .to_string();
-        assert!(err.starts_with("steps.yaml: material.density"), "{err}");
+        // Named where the file writes it (line 5, column 12).
+        assert!(
+            err.starts_with("steps.yaml:5:12: material.density"),
+            "{err}"
+        );
         assert_mentions(&err, words);
         assert_mentions(
             &err,
@@ -527,13 +531,7 @@ fn a_missing_section_is_named_at_the_start_of_the_scene() {
 fn a_bad_end_time_says_what_end_takes() {
     for bad in ["soon", "{after: 1}"] {
         let e = error_for(|s| s.replace("end: 3.0e-3 ", &format!("end: {bad} ")));
-        assert_mentions(
-            &e,
-            &[
-                "bad.yaml:20:",
-                "time.end: expected a number of seconds or {after_contact: seconds}",
-            ],
-        );
+        assert_mentions(&e, &["bad.yaml:20:", "time.end", "after_contact"]);
         assert!(!e.contains("untagged"), "{e}");
     }
 }

@@ -583,7 +583,14 @@ impl Case {
 
 /// Parses a case.yaml; `path` names it in messages.
 pub fn parse_case(text: &str, path: &Path) -> Result<CaseFile, CaseError> {
-    parse_located(text, path)
+    parse_located(
+        text,
+        path,
+        (
+            "case file",
+            "every case.yaml needs id, title, requirement, category and checks",
+        ),
+    )
 }
 
 /// Parses YAML text into `T`; an error names the place (`path:line:column`) and the parser's
@@ -591,24 +598,22 @@ pub fn parse_case(text: &str, path: &Path) -> Result<CaseFile, CaseError> {
 pub fn parse_located<T: serde::de::DeserializeOwned>(
     text: &str,
     path: &Path,
+    (document, needs): (&str, &str),
 ) -> Result<T, CaseError> {
     serde_saphyr::from_str::<T>(text).map_err(|e| {
         let (line, column) = e
             .location()
             .map(|l| (l.line(), l.column()))
             .unwrap_or((0, 0));
-        let message = e.to_string();
-        let first = message.lines().next().unwrap_or(&message).trim();
-        let mut message = match first.find(" at line ") {
-            Some(p) => first[..p].to_string(),
-            None => first.to_string(),
-        };
-        // "error: line 13 column 27: invalid ..." repeats the location we print.
-        if let Some(rest) = message.strip_prefix("error: line ") {
-            if let Some(p) = rest.find(": ") {
-                message = rest[p + 2..].to_string();
-            }
-        }
+        // The scene parser's plain words and field names (no library wording), in terms of
+        // this file.
+        let (line, column, message) = impact_solver::yaml_field::describe_document(
+            text,
+            &impact_solver::yaml_field::parser_words(&e.to_string()),
+            (line, column),
+            document,
+            needs,
+        );
         CaseError::Parse {
             loc: Loc {
                 file: path.to_path_buf(),
@@ -629,6 +634,17 @@ pub fn load_cases(cases_dir: &Path) -> (Vec<Case>, Vec<CaseError>) {
         for case_dir in sorted_dirs(&suite_dir) {
             let path = case_dir.join("case.yaml");
             if !path.is_file() {
+                // Every folder under a suite is a case: one without its file is broken, not
+                // left out of the matrix without a word.
+                let why = if path.is_dir() {
+                    "case.yaml is a folder; a case needs its case.yaml file"
+                } else {
+                    "this case folder has no case.yaml (every folder under verification/cases/<suite>/ is a case)"
+                };
+                errors.push(CaseError::Read {
+                    path,
+                    source: std::io::Error::other(why),
+                });
                 continue;
             }
             let text = match std::fs::read_to_string(&path) {

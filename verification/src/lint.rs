@@ -305,6 +305,15 @@ fn lint_reference(
             push("a pending reference needs a reason".into());
         }
     }
+    // A NaN or inf reference compares as no difference, or as every difference.
+    for (key, x) in [("value", rv.value), ("scale", rv.scale)] {
+        if let Some(x) = x.filter(|x| !x.is_finite()) {
+            push(format!(
+                "reference.{key} = {}: must be a finite number",
+                impact_solver::error::shown(x)
+            ));
+        }
+    }
     let mut files = Vec::new();
     if let Some(t) = &rv.table {
         files.push(&t.file);
@@ -359,9 +368,17 @@ fn lint_tolerance(
     if tv.reason.as_deref().is_none_or(|s| s.trim().is_empty()) {
         push("the tolerance has no reason");
     }
-    let bad = |x: Option<f64>| x.is_some_and(|v| !(v.is_finite() && v >= 0.0));
-    if bad(tv.relative) || bad(tv.absolute) || bad(tv.floor) {
-        push("tolerances must be finite and >= 0");
+    for (key, x) in [
+        ("relative", tv.relative),
+        ("absolute", tv.absolute),
+        ("floor", tv.floor),
+    ] {
+        if let Some(x) = x.filter(|v| !(v.is_finite() && *v >= 0.0)) {
+            push(&format!(
+                "tolerance.{key} = {}: tolerances must be finite and >= 0",
+                impact_solver::error::shown(x)
+            ));
+        }
     }
     if tv.relative.is_none() && tv.absolute.is_none() {
         push("the tolerance needs relative and/or absolute (0 for exact)");

@@ -34,6 +34,7 @@ pub fn recount(results: &Value) -> Result<Counts> {
     }
     let cases = array(results, "cases", "cases")?;
     let mut tally = Tally::default();
+    let mut seen: Vec<(&str, &str)> = Vec::new();
     for (i, case) in cases.iter().enumerate() {
         let at = format!("cases[{i}]");
         if !case.is_object() {
@@ -44,16 +45,20 @@ pub fn recount(results: &Value) -> Result<Counts> {
         }
         let suite = string(case, "suite", &at)?;
         let name = string(case, "case", &at)?;
-        for (j, check) in array(case, "checks", &format!("{at}.checks"))?
-            .iter()
-            .enumerate()
-        {
+        let checks = array(case, "checks", &format!("{at}.checks"))?;
+        if let Some(first) = seen.iter().position(|c| *c == (suite, name)) {
+            bail!("{at}: {suite}/{name} is listed twice (also cases[{first}]): its checks would count twice");
+        }
+        seen.push((suite, name));
+        for (j, check) in checks.iter().enumerate() {
             let id = check["id"].as_str().unwrap_or("?");
             let row: CheckResult = serde_json::from_value(check.clone()).with_context(|| {
                 format!("{at}.checks[{j}] ({suite}/{name} check {id}): not a check row")
             })?;
             tally.add(crate::verdict::Verdict::of_check(&row));
         }
+        // The report shows the case by its id.
+        string(case, "id", &at)?;
     }
     Ok(Counts::from_tally(&tally))
 }

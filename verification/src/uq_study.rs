@@ -45,6 +45,12 @@ use serde::{Deserialize, Serialize};
 use serde_saphyr::Spanned;
 
 use crate::case::{parse_located, Loc};
+
+/// How a study file is named in parse errors, and the keys it must have.
+const STUDY_FILE: (&str, &str) = (
+    "study file",
+    "every study needs title, inputs, sampling, convergence, mesh_levels and outputs (and a scene or scenes, unless based_on gives them)",
+);
 use crate::uq_distribution::{Input, InputFile};
 
 #[derive(Debug, Clone, Deserialize, Serialize)]
@@ -257,7 +263,7 @@ fn scene_decls<'a>(file: &'a StudyFile, path: &Path) -> Result<Vec<SceneDecl<'a>
 
 /// Parses and validates a study's YAML text; `path` names it and resolves its scenes.
 pub fn parse(text: &str, path: &Path) -> Result<Study, String> {
-    let file: StudyFile = parse_located(text, path).map_err(|e| e.to_string())?;
+    let file: StudyFile = parse_located(text, path, STUDY_FILE).map_err(|e| e.to_string())?;
     let decls = scene_decls(&file, path)?;
     let set = file
         .set
@@ -390,7 +396,7 @@ fn base_study(
             "is already on this chain of bases (a study cannot be based on itself)",
         ));
     }
-    parse_located(&text, &other)
+    parse_located(&text, &other, STUDY_FILE)
         .map(|decl| (decl, other))
         .map_err(|e| e.to_string())
 }

@@ -209,8 +209,9 @@ fn malformed_case_files_give_file_line_column() {
     assert!(e.contains("colour"), "{e}");
     // Wrong type: a tolerance that is not a number.
     let e = parse_error(&GOOD.replace("absolute: 1.0e-12", "absolute: tiny"));
+    // Named as the field it is, in the scene parser's plain words (issue 28).
     assert!(
-        e.starts_with("cases/x/case.yaml:13:27: invalid floating point"),
+        e.starts_with("cases/x/case.yaml:13:27: checks[0].tolerance.absolute: expected a number"),
         "{e}"
     );
     // Unknown category.

@@ -245,7 +245,8 @@ fn a_time_step_that_makes_no_run_is_refused_and_a_tiny_output_interval_does_not_
         });
         let (code, err) = run_or_kill(&s, &d.join("out"));
         assert_eq!(code, 2, "{err}");
-        let named = format!("{}: material.density = {density}: ", s.display());
+        // At the line and column where the scene writes it.
+        let named = format!("{}:5:12: material.density = {density}: ", s.display());
         assert!(err.contains(&named) && err.contains(says), "{err}");
     }
     // 10^8 history intervals in each step: a row every step, written at once.

@@ -114,3 +114,13 @@ impl Error {
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// A number as a scene would write it, for messages: `7850`, `0.3`, `-1`, `1e300`, `1e-300`,
+/// `NaN`, `inf` (never the hundreds of digits of `{}` for a very large or small value).
+pub fn shown(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}

@@ -7,7 +7,9 @@
 pub mod budget;
 pub mod error;
 pub mod overrides;
+pub mod plausibility;
 pub mod rate_law;
 pub mod scene;
+pub mod spans;
 pub mod time_step;
 pub mod yaml_field;

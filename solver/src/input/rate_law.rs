@@ -202,8 +202,11 @@ impl Validator<'_> {
             return self.fail(
                 &th.melting_temperature,
                 &g("melting_temperature"),
-                melting,
-                format!("must be above initial_temperature = {initial} K"),
+                crate::input::error::shown(melting),
+                format!(
+                    "must be above initial_temperature = {} K",
+                    crate::input::error::shown(initial)
+                ),
             );
         }
         let Some(m) = m else {

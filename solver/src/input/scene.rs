@@ -5,15 +5,18 @@
 //! solver runs. Every field, its unit and its default are documented on [`SceneFile`]'s parts
 //! and in the README.
 
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
-use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::error::{shown, Error, Result, SourceLocation};
 use crate::input::overrides::Overrides;
+use crate::input::plausibility::Warning;
 use crate::input::rate_law::{RateFile, RateLaw};
+use crate::input::spans::FieldSpans;
 
 type Num = Spanned<f64>;
 type Int = Spanned<i64>;
@@ -116,7 +119,7 @@ pub struct PlasticityFile {
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum HardeningFile {
     /// Tangent modulus of the uniaxial curve after yield, Pa (0 = perfectly plastic).
-    Linear(f64),
+    Linear(Num),
     /// Piecewise-linear flow stress (Pa) against equivalent plastic strain (-).
     Table(Vec<[f64; 2]>),
 }
@@ -378,13 +381,14 @@ pub struct TimeFile {
     /// Hard stop for `end: {after_contact}`, s (default 0.05).
     #[serde(default)]
     pub limit: Option<Num>,
-    /// Accept a step above the stable estimate (stability studies only).
+    /// Accept a step above the stable estimate (stability studies only; default false).
     #[serde(default)]
-    pub allow_unstable_dt: bool,
+    pub allow_unstable_dt: Option<Spanned<bool>>,
 }
 
-#[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+/// `end: s` or `end: {after_contact: s}` (a quoted number reads as the number, as
+/// everywhere in a scene).
+#[derive(Debug, Clone)]
 pub enum EndFile {
     /// End time, s.
     At(f64),
@@ -395,7 +399,70 @@ pub enum EndFile {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AfterContactFile {
-    pub after_contact: f64,
+    pub after_contact: Num,
+}
+
+impl<'de> Deserialize<'de> for EndFile {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        d.deserialize_any(EndVisitor)
+    }
+}
+
+/// Reads `end:` with plain-word errors (an untagged enum would say "did not match any
+/// variant").
+struct EndVisitor;
+
+impl<'de> serde::de::Visitor<'de> for EndVisitor {
+    type Value = EndFile;
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a number of seconds or {after_contact: seconds}")
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<EndFile, E> {
+        Ok(EndFile::At(v))
+    }
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<EndFile, E> {
+        Ok(EndFile::At(v as f64))
+    }
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<EndFile, E> {
+        Ok(EndFile::At(v as f64))
+    }
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<EndFile, E> {
+        match v.trim().parse::<f64>() {
+            // `inf`/`nan` in quotes are words here, as YAML's .inf/.nan are (refused by name).
+            Ok(x) if x.is_finite() => Ok(EndFile::At(x)),
+            _ => Err(E::custom(format!(
+                "`{v}` is not a number: expected a number of seconds or {{after_contact: seconds}}"
+            ))),
+        }
+    }
+    fn visit_bool<E: serde::de::Error>(self, v: bool) -> std::result::Result<EndFile, E> {
+        Err(E::custom(format!(
+            "`{v}` is not a number: expected a number of seconds or {{after_contact: seconds}}"
+        )))
+    }
+    fn visit_unit<E: serde::de::Error>(self) -> std::result::Result<EndFile, E> {
+        Err(E::custom(
+            "no value: expected a number of seconds or {after_contact: seconds}",
+        ))
+    }
+    fn visit_none<E: serde::de::Error>(self) -> std::result::Result<EndFile, E> {
+        self.visit_unit()
+    }
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(
+        self,
+        _: A,
+    ) -> std::result::Result<EndFile, A::Error> {
+        Err(serde::de::Error::custom(
+            "a list: expected a number of seconds or {after_contact: seconds}",
+        ))
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(
+        self,
+        map: A,
+    ) -> std::result::Result<EndFile, A::Error> {
+        let a = AfterContactFile::deserialize(serde::de::value::MapAccessDeserializer::new(map))?;
+        Ok(EndFile::AfterContact(a))
+    }
 }
 
 /// `dt: {cfl: c | fixed: s, estimate: element | global}` (exactly one of `cfl`, `fixed`).
@@ -404,10 +471,10 @@ pub struct AfterContactFile {
 pub struct DtFile {
     /// Fraction of the stable estimate.
     #[serde(default)]
-    pub cfl: Option<f64>,
+    pub cfl: Option<Num>,
     /// Time step, s.
     #[serde(default)]
-    pub fixed: Option<f64>,
+    pub fixed: Option<Num>,
     /// Which estimate of the stable step (default `element`).
     #[serde(default)]
     pub estimate: Estimate,
@@ -453,6 +520,11 @@ pub struct Scene {
     pub load: Load,
     pub time: TimeSettings,
     pub output: OutputSettings,
+    /// Where each field was written (for messages about values after validation).
+    pub fields: FieldSpans,
+    /// Inputs accepted that look wrong (units, options that do nothing here), in the order
+    /// [`crate::input::plausibility::warnings`] finds them.
+    pub warnings: Vec<Warning>,
     pub kinematics: Kinematics,
 }
 
@@ -662,7 +734,9 @@ impl Scene {
     /// Parses and validates YAML text; `source` names it in messages.
     pub fn from_yaml(text: &str, source: &Path) -> Result<Scene> {
         let file: SceneFile = parse(text, source)?;
-        Validator { source }.scene(file)
+        let mut scene = Validator::new(source).scene(file)?;
+        scene.warnings = crate::input::plausibility::warnings(&scene, Some(text));
+        Ok(scene)
     }
 
     /// Parses YAML text, sets each override at its dotted path of the scene (e.g.
@@ -682,12 +756,12 @@ impl Scene {
             }
             let json = serde_json::to_string_pretty(&tree).map_err(|e| e.to_string())?;
             let file: SceneFile = parse(&json, source).map_err(|e| without_location(&e))?;
-            Validator { source }
+            Validator::new(source)
                 .scene(file)
                 .map_err(|e| without_location(&e))
         };
         let refused = match merged(&mut overrides.iter()) {
-            Ok(scene) => return Ok(with_locations_of(scene, &base, overrides)),
+            Ok(scene) => return Ok(with_locations_of(scene, &base, overrides, text)),
             Err(message) => message,
         };
         // Name the first override the rules refuse on its own; else the combination.
@@ -743,27 +817,6 @@ impl Scene {
     }
 }
 
-/// The parser's message without the location it repeats (we print our own) and without
-/// hints meant for programmers.
-fn first_line_without_location(message: &str) -> String {
-    let first = message.lines().next().unwrap_or(message).trim();
-    let mut text = first.strip_prefix("error: ").unwrap_or(first);
-    if let Some(rest) = text.strip_prefix("line ") {
-        // "line N column M: message"
-        if let Some((_, after)) = rest.split_once(": ") {
-            text = after;
-        }
-    }
-    let text = text
-        .split(", set DuplicateKeyPolicy")
-        .next()
-        .unwrap_or(text);
-    match text {
-        "invalid floating point" => "expected a number".to_string(),
-        other => other.to_string(),
-    }
-}
-
 /// Parses YAML text into `T`, with the parser's line and column.
 fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T> {
     serde_saphyr::from_str(text).map_err(|e| {
@@ -773,7 +826,7 @@ fn parse<T: serde::de::DeserializeOwned>(text: &str, source: &Path) -> Result<T>
             .unwrap_or((0, 0));
         let (line, column, message) = crate::input::yaml_field::describe(
             text,
-            &first_line_without_location(&e.to_string()),
+            &crate::input::yaml_field::parser_words(&e.to_string()),
             line,
             column,
         );
@@ -797,8 +850,9 @@ fn without_location(e: &Error) -> String {
     }
 }
 
-/// The scene of the merged tree, pointing at the file where the file still holds the value.
-fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides) -> Scene {
+/// The scene of the merged tree, pointing at the file where the file still holds the value,
+/// its warnings found again on the merged values.
+fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides, text: &str) -> Scene {
     let dt_overridden = overrides
         .keys()
         .any(|k| k == "time" || k.starts_with("time.dt"));
@@ -807,11 +861,16 @@ fn with_locations_of(mut scene: Scene, base: &Scene, overrides: &Overrides) -> S
     } else {
         base.time.dt_location.clone()
     };
+    let keys: Vec<&str> = overrides.keys().map(String::as_str).collect();
+    scene.fields = FieldSpans::relocated(&scene.fields, &base.fields, &keys, &base.source);
+    scene.warnings = crate::input::plausibility::warnings(&scene, Some(text));
     scene
 }
 
 pub(super) struct Validator<'a> {
     source: &'a Path,
+    /// Where each field read so far was written.
+    spans: RefCell<FieldSpans>,
 }
 
 /// A validation rule: what a value must satisfy, in words.
@@ -833,6 +892,13 @@ const POISSON: Rule = Rule {
     allowed: "must lie in (-1, 0.5) (exclusive)",
     ok: |v| v > -1.0 && v < 0.5,
 };
+/// Eq. (4)'s hidden length: the unit of length the paper's law is read in. Any unit of
+/// length anyone means lies between a micrometre and a kilometre; beyond 1.3e154 m its square
+/// overflows and the law's constants become inf (a run that stopped with NaN energies).
+const LENGTH_UNIT: Rule = Rule {
+    allowed: "must lie in [1e-6, 1e3] m (the unit of length eq. (4) is read in: 1 for metres, 0.001 for millimetres)",
+    ok: |v| (1e-6..=1e3).contains(&v),
+};
 const CFL: Rule = Rule {
     allowed: "must lie in (0, 1] (fraction of the stable step)",
     ok: |v| v > 0.0 && v <= 1.0,
@@ -842,19 +908,42 @@ const CFL_UNCHECKED: Rule = Rule {
     ok: |v| v.is_finite() && v > 0.0,
 };
 
-impl Validator<'_> {
+impl<'a> Validator<'a> {
+    fn new(source: &'a Path) -> Validator<'a> {
+        Validator {
+            source,
+            spans: RefCell::new(FieldSpans::default()),
+        }
+    }
+
     fn at<T>(&self, spanned: &Spanned<T>) -> SourceLocation {
         SourceLocation::of(self.source, spanned)
     }
 
+    /// Notes where `field` was written (and its value, when a number).
+    fn read<T>(&self, spanned: &Spanned<T>, field: &str) {
+        self.read_number(spanned, field, None);
+    }
+
+    fn read_number<T>(&self, spanned: &Spanned<T>, field: &str, value: Option<f64>) {
+        self.read_value(spanned, field, value, false);
+    }
+
+    fn read_value<T>(&self, spanned: &Spanned<T>, field: &str, value: Option<f64>, positive: bool) {
+        self.spans
+            .borrow_mut()
+            .insert(field, self.at(spanned), value, positive);
+    }
+
     pub(super) fn check(&self, value: &Num, field: &str, rule: Rule) -> Result<f64> {
+        self.read_value(value, field, Some(value.value), !(rule.ok)(0.0));
         if (rule.ok)(value.value) {
             Ok(value.value)
         } else {
             Err(Error::invalid(
                 self.at(value),
                 field,
-                value.value,
+                shown(value.value),
                 rule.allowed,
             ))
         }
@@ -891,6 +980,8 @@ impl Validator<'_> {
             load,
             time,
             output,
+            fields: self.spans.take(),
+            warnings: Vec::new(),
             kinematics: file.kinematics,
         })
     }
@@ -983,11 +1074,13 @@ impl Validator<'_> {
         let field = "material.plasticity.hardening";
         match &h.value {
             HardeningFile::Linear(et) => {
+                self.read_number(et, &format!("{field}.linear"), Some(et.value));
+                let (at, et) = (et, &et.value);
                 if !(et.is_finite() && *et >= 0.0 && *et < youngs_modulus) {
                     return self.fail(
-                        h,
+                        at,
                         &format!("{field}.linear"),
-                        et,
+                        shown(*et),
                         format!(
                             "tangent modulus must lie in [0, youngs_modulus = {youngs_modulus:e}) Pa"
                         ),
@@ -1045,6 +1138,8 @@ impl Validator<'_> {
     }
 
     fn mesh(&self, m: &MeshFile) -> Result<MeshSettings> {
+        self.read_number(&m.nx, "mesh.nx", Some(m.nx.value as f64));
+        self.read_number(&m.ny, "mesh.ny", Some(m.ny.value as f64));
         let nx = m.nx.value;
         if !(1..=100_000).contains(&nx) {
             return self.fail(&m.nx, "mesh.nx", nx, "must be an integer in [1, 100000]");
@@ -1204,7 +1299,7 @@ impl Validator<'_> {
                 return self.fail(
                     v,
                     &f("contact.surface.penalty_scale"),
-                    v.value,
+                    shown(v.value),
                     "is the penalty enforcement's: give `enforcement: penalty` with it, or remove it (the kinematic enforcement has no stiffness)",
                 )
             }
@@ -1297,7 +1392,7 @@ impl Validator<'_> {
                 length_unit: self.check(
                     length_unit,
                     &f("contact_law.paper.length_unit"),
-                    POSITIVE,
+                    LENGTH_UNIT,
                 )?,
             },
             ContactLawFile::Johnson { datum_depth } => {
@@ -1307,8 +1402,11 @@ impl Validator<'_> {
                     return self.fail(
                         datum_depth,
                         &f("contact_law.johnson.datum_depth"),
-                        depth,
-                        format!("must not exceed the plate thickness {} m", plate.thickness),
+                        shown(depth),
+                        format!(
+                            "must not exceed the plate thickness {} m",
+                            shown(plate.thickness)
+                        ),
                     );
                 }
                 ContactLawChoice::Johnson { datum_depth: depth }
@@ -1322,42 +1420,29 @@ impl Validator<'_> {
             Some(l) => self.check(l, "time.limit", POSITIVE)?,
         };
         let end = match &t.end.value {
-            EndFile::At(v) if v.is_finite() && *v > 0.0 => End::At(*v),
-            EndFile::At(v) => return self.fail(&t.end, "time.end", v, POSITIVE.allowed),
-            EndFile::AfterContact(a) if a.after_contact.is_finite() && a.after_contact >= 0.0 => {
-                End::AfterContact {
-                    after: a.after_contact,
-                    limit,
+            EndFile::At(v) => {
+                self.read_value(&t.end, "time.end", Some(*v), true);
+                if !(v.is_finite() && *v > 0.0) {
+                    return self.fail(&t.end, "time.end", shown(*v), POSITIVE.allowed);
                 }
+                End::At(*v)
             }
-            EndFile::AfterContact(a) => {
-                return self.fail(
-                    &t.end,
-                    "time.end.after_contact",
-                    a.after_contact,
-                    NON_NEGATIVE.allowed,
-                )
-            }
+            EndFile::AfterContact(a) => End::AfterContact {
+                after: self.check(&a.after_contact, "time.end.after_contact", NON_NEGATIVE)?,
+                limit,
+            },
         };
+        if let Some(allow) = &t.allow_unstable_dt {
+            self.read(allow, "time.allow_unstable_dt");
+        }
+        let allow_unstable_dt = t.allow_unstable_dt.as_ref().is_some_and(|a| a.value);
         let dt_location = self.at(&t.dt);
         let dt = match (&t.dt.value.cfl, &t.dt.value.fixed) {
             (Some(c), None) => {
-                let rule = if t.allow_unstable_dt {
-                    CFL_UNCHECKED
-                } else {
-                    CFL
-                };
-                if !(rule.ok)(*c) {
-                    return self.fail(&t.dt, "time.dt.cfl", c, rule.allowed);
-                }
-                DtChoice::Cfl(*c)
+                let rule = if allow_unstable_dt { CFL_UNCHECKED } else { CFL };
+                DtChoice::Cfl(self.check(c, "time.dt.cfl", rule)?)
             }
-            (None, Some(d)) => {
-                if !(POSITIVE.ok)(*d) {
-                    return self.fail(&t.dt, "time.dt.fixed", d, POSITIVE.allowed);
-                }
-                DtChoice::Fixed(*d)
-            }
+            (None, Some(d)) => DtChoice::Fixed(self.check(d, "time.dt.fixed", POSITIVE)?),
             (c, _) => {
                 return self.fail(
                     &t.dt,
@@ -1372,7 +1457,7 @@ impl Validator<'_> {
             dt,
             dt_estimate: t.dt.value.estimate,
             dt_location,
-            allow_unstable_dt: t.allow_unstable_dt,
+            allow_unstable_dt,
         })
     }
 
@@ -1401,20 +1486,25 @@ impl Validator<'_> {
             }
             let x = p.x.value;
             let y = p.y.value;
+            self.read_number(&p.x, &format!("output.probes.{name}.x"), Some(x));
+            self.read_number(&p.y, &format!("output.probes.{name}.y"), Some(y));
             if !(x.is_finite() && (0.0..=plate.length).contains(&x)) {
                 return self.fail(
                     &p.x,
                     &format!("output.probes.{name}.x"),
-                    x,
-                    format!("must lie in [0, plate.length = {}] m", plate.length),
+                    shown(x),
+                    format!("must lie in [0, plate.length = {}] m", shown(plate.length)),
                 );
             }
             if !(y.is_finite() && (0.0..=plate.thickness).contains(&y)) {
                 return self.fail(
                     &p.y,
                     &format!("output.probes.{name}.y"),
-                    y,
-                    format!("must lie in [0, plate.thickness = {}] m", plate.thickness),
+                    shown(y),
+                    format!(
+                        "must lie in [0, plate.thickness = {}] m",
+                        shown(plate.thickness)
+                    ),
                 );
             }
             probes.push((name.clone(), [x, y]));

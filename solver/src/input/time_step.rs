@@ -6,7 +6,7 @@
 //! step before its loop.
 
 use crate::input::budget::{count, p_wave_speed, smallest_element_length};
-use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::error::{shown, Error, Result};
 use crate::input::scene::{DtChoice, End, Scene};
 
 /// Most time steps a run may take. The smallest mesh (2 elements) took 0.31 us a step
@@ -40,14 +40,7 @@ pub fn check_steps(scene: &Scene, dt: f64) -> Result<()> {
         return Ok(());
     };
     let (field, value) = culprit(scene);
-    let location = match (field, &scene.time.dt) {
-        ("time.dt.fixed", _) => scene.time.dt_location.clone(),
-        _ => SourceLocation {
-            file: scene.source.clone(),
-            line: 0,
-            column: 0,
-        },
-    };
+    let location = scene.fields.location(&field, &scene.source);
     Err(Error::invalid(
         location,
         field,
@@ -58,15 +51,6 @@ pub fn check_steps(scene: &Scene, dt: f64) -> Result<()> {
             count(MAX_STEPS)
         ),
     ))
-}
-
-/// A value as the scene would write it: `7850`, `0.3`, `1e-300` (no 300 zeros).
-fn shown(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e6).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 /// The field that ends the run and its time, s.
@@ -83,16 +67,17 @@ fn provenance(scene: &Scene) -> String {
     match scene.time.dt {
         DtChoice::Fixed(d) => format!("time.dt.fixed = {} s", shown(d)),
         DtChoice::Cfl(c) => format!(
-            "time.dt.cfl = {c} of the stable step of the smallest element, {:.3e} x {:.3e} m \
+            "time.dt.cfl = {} of the stable step of the smallest element, {:.3e} x {:.3e} m \
              (plate.length, plate.thickness, mesh.nx, mesh.ny), at the P-wave speed {:.3e} m/s of \
              material.density = {} kg/m^3, material.youngs_modulus = {} Pa, \
              material.poisson_ratio = {}",
+            shown(c),
             smallest_element_length(scene),
             scene.plate.thickness / scene.mesh.ny as f64,
             p_wave_speed(m),
             shown(m.density),
             shown(m.youngs_modulus),
-            m.poisson_ratio
+            shown(m.poisson_ratio)
         ),
     }
 }
@@ -102,7 +87,14 @@ fn provenance(scene: &Scene) -> String {
 /// the run's end. The P-wave speeds of solids lie between ~20 (soft rubber) and ~18 000 m/s
 /// (diamond); densities between ~1 (aerogel) and 22 600 kg/m^3 (osmium); Young's moduli
 /// between ~1e4 (gels) and 1.2e12 Pa (diamond).
-fn culprit(scene: &Scene) -> (&'static str, f64) {
+fn culprit(scene: &Scene) -> (String, f64) {
+    // An input beyond any physical magnitude that the step or the run's length depends on.
+    let extreme = crate::input::plausibility::extreme_fields(scene)
+        .into_iter()
+        .find(|(field, _)| !field.starts_with("output."));
+    if let Some(found) = extreme {
+        return found;
+    }
     let outside = |x: f64, lo: f64, hi: f64| !(lo..=hi).contains(&x);
     let m = &scene.material;
     let candidates = match scene.time.dt {
@@ -134,10 +126,11 @@ fn culprit(scene: &Scene) -> (&'static str, f64) {
             ]
         }
     };
-    candidates
+    let (field, value) = candidates
         .into_iter()
         .find(|c| c.2)
-        .map_or_else(|| run_end(scene), |c| (c.0, c.1))
+        .map_or_else(|| run_end(scene), |c| (c.0, c.1));
+    (field.to_string(), value)
 }
 
 #[cfg(test)]
@@ -166,8 +159,9 @@ mod tests {
         let mut light = scene.clone();
         light.material.density = 1e-300;
         let e = refusal(&light, 0.0);
+        // Named where the file writes it (the spans the scene keeps).
         assert!(
-            e.starts_with("example.yaml: material.density = 1e-300: "),
+            e.starts_with("example.yaml:5:12: material.density = 1e-300: "),
             "{e}"
         );
         assert!(

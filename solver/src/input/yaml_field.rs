@@ -4,9 +4,12 @@
 //! integer`), so that `mesh: {nx: abc}` reads `mesh.nx: expected an integer`.
 
 /// The dotted path of the key whose value (or key) sits at 1-based `line`, `column` of
-/// `text`; empty at the top level or past the end.
+/// `text`; empty at the top level or past the end. Items of a block list of mappings
+/// (`checks:` then `- id: ...` lines, as in case files) are numbered: `checks[1].tolerance`.
 pub fn field_at(text: &str, line: u64, column: u64) -> String {
-    let mut block: Vec<(usize, String)> = Vec::new();
+    // (indent, name, is a list item); an item's keys sit two columns right of its dash.
+    let mut block: Vec<(usize, String, bool)> = Vec::new();
+    let mut items: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
     for (i, raw) in text.lines().enumerate() {
         let number = i as u64 + 1;
         if number > line {
@@ -16,15 +19,31 @@ pub fn field_at(text: &str, line: u64, column: u64) -> String {
         if content.trim().is_empty() {
             continue;
         }
-        let indent = content.len() - content.trim_start().len();
-        let rest = content.trim_start().trim_start_matches("- ");
+        let mut indent = content.len() - content.trim_start().len();
+        let mut rest = content.trim_start();
+        if let Some(item) = rest.strip_prefix("- ") {
+            // A new item: leave the previous one (and anything deeper), keep the list's key
+            // (at this indent or less: `checks:` then `- ...` may share a column).
+            while block
+                .last()
+                .is_some_and(|(d, _, is_item)| *d > indent || (*d == indent && *is_item))
+            {
+                block.pop();
+            }
+            let parent = join(&block);
+            let n = items.entry(parent.clone()).or_insert(0);
+            block.push((indent, format!("[{n}]"), true));
+            *n += 1;
+            indent += 2;
+            rest = item.trim_start();
+        }
         let Some((key, after)) = split_key(rest) else {
             continue;
         };
-        while block.last().is_some_and(|(d, _)| *d >= indent) {
+        while block.last().is_some_and(|(d, _, _)| *d >= indent) {
             block.pop();
         }
-        block.push((indent, key.to_string()));
+        block.push((indent, key.to_string(), false));
         if number == line {
             let value_start = content.len() - after.len();
             let col = (column.max(1) - 1) as usize;
@@ -34,20 +53,27 @@ pub fn field_at(text: &str, line: u64, column: u64) -> String {
                 return join(&block);
             }
             let flow = flow_path(after, col.saturating_sub(value_start));
-            let mut path: Vec<String> = block.into_iter().map(|(_, k)| k).collect();
-            path.extend(flow);
-            return path.join(".");
+            let mut path = join(&block);
+            for f in flow {
+                path.push('.');
+                path.push_str(&f);
+            }
+            return path;
         }
     }
     join(&block)
 }
 
-fn join(block: &[(usize, String)]) -> String {
-    block
-        .iter()
-        .map(|(_, k)| k.as_str())
-        .collect::<Vec<_>>()
-        .join(".")
+/// `a`, `b`, `[0]`, `c` -> `a.b[0].c`.
+fn join(block: &[(usize, String, bool)]) -> String {
+    let mut path = String::new();
+    for (_, name, is_item) in block {
+        if !path.is_empty() && !is_item {
+            path.push('.');
+        }
+        path.push_str(name);
+    }
+    path
 }
 
 /// `key: rest` -> (key, rest after the colon); `None` for a line without a plain key. A key
@@ -123,8 +149,33 @@ fn without_comment(line: &str) -> &str {
     line
 }
 
+/// The YAML parser's message without the location it repeats (the caller prints its own) and
+/// without hints meant for programmers: its first line, `line N column M:` and
+/// `at line N, column M` taken out, the duplicate-key policy hint dropped.
+pub fn parser_words(message: &str) -> String {
+    let first = message.lines().next().unwrap_or(message).trim();
+    let mut text = first.strip_prefix("error: ").unwrap_or(first);
+    if let Some(rest) = text.strip_prefix("line ") {
+        // "line N column M: message"
+        if let Some((_, after)) = rest.split_once(": ") {
+            text = after;
+        }
+    }
+    let text = text
+        .split(", set DuplicateKeyPolicy")
+        .next()
+        .unwrap_or(text);
+    let text = text.split(" at line ").next().unwrap_or(text);
+    match text {
+        "invalid floating point" => "expected a number".to_string(),
+        other => other.to_string(),
+    }
+}
+
 /// The parser's message in the user's terms, for a value at `field`.
 pub fn explain(message: &str, field: &str) -> String {
+    // An item of a list at the top level is no field of a scene.
+    let field = if field.starts_with('[') { "" } else { field };
     let parent = field.rsplit_once('.').map_or("", |(p, _)| p);
     let leaf = field.rsplit_once('.').map_or(field, |(_, l)| l);
     let words = match message {
@@ -135,10 +186,16 @@ pub fn explain(message: &str, field: &str) -> String {
         "expected string scalar" => {
             "expected a single value (a number or a word), not a list or a mapping".to_string()
         }
-        m if m.starts_with("data did not match any variant of untagged enum EndFile") => {
-            "expected a number of seconds or {after_contact: seconds}".to_string()
-        }
         m if m.starts_with("non-finite float") => "must be a finite number".to_string(),
+        "expected string key for externally tagged enum"
+        | "externally tagged enum expected scalar or mapping"
+            if words(leaf).is_some() =>
+        {
+            format!(
+                "expected one word, {}, not a list or a mapping",
+                words(leaf).unwrap_or_default()
+            )
+        }
         "expected string key for externally tagged enum"
         | "externally tagged enum expected scalar or mapping" => {
             format!("expected one kind written as a mapping: {}", kinds(leaf))
@@ -147,6 +204,33 @@ pub fn explain(message: &str, field: &str) -> String {
             "{} takes exactly one kind, and a second one (`{leaf}`) is given here; keep one",
             if parent.is_empty() { "this" } else { parent }
         ),
+        "expected mapping start" if field.is_empty() || field.starts_with('[') => {
+            "a scene is a mapping of sections (plate, material, mesh, load, time, output), not a list or a single value".to_string()
+        }
+        "expected mapping start" if kinds(leaf) != OTHER_KINDS => {
+            format!("expected one kind written as a mapping: {}", kinds(leaf))
+        }
+        "expected mapping start" => {
+            "expected its keys (`key: value` lines indented under it, or `{key: value, ...}`), not a single value or a list".to_string()
+        }
+        "expected sequence start" => "expected a list (`[a, b, ...]`)".to_string(),
+        "unexpected value for unit enum variant" => {
+            let key = parent.rsplit('.').next().unwrap_or(parent);
+            format!("`{leaf}` takes no settings: write `{key}: {leaf}`")
+        }
+        "invalid boolean" => "expected true or false".to_string(),
+        m if m.starts_with("tabs disallowed") => {
+            "a tab in the indentation: YAML indents with spaces only".to_string()
+        }
+        m if m.contains("did not find expected key") => {
+            "the indentation does not line up here: a key is expected at this column (YAML indents with spaces only)".to_string()
+        }
+        m if m.starts_with("unexpected character") => {
+            format!("{m}: a character YAML does not allow here (is this a text file?)")
+        }
+        "alias references unknown anchor" => {
+            "`*name` refers to an anchor `&name` that is not defined above it".to_string()
+        }
         other => other.to_string(),
     };
     if field.is_empty() {
@@ -160,6 +244,24 @@ pub fn explain(message: &str, field: &str) -> String {
 /// place it belongs to: an unclosed quote where the string starts, a second document at its
 /// `---`, a missing field at the mapping that lacks it; else [`explain`] at the parser's place.
 pub fn describe(text: &str, message: &str, line: u64, column: u64) -> (u64, u64, String) {
+    describe_document(
+        text,
+        message,
+        (line, column),
+        "scene",
+        "every scene needs plate, material, mesh, load and time",
+    )
+}
+
+/// [`describe`] for another YAML document (`document`, e.g. `case file`); `needs` lists the
+/// top-level keys it must have.
+pub fn describe_document(
+    text: &str,
+    message: &str,
+    (line, column): (u64, u64),
+    document: &str,
+    needs: &str,
+) -> (u64, u64, String) {
     if let Some((l, c)) = unclosed_quote(text) {
         let field = field_at(text, l, c);
         let words = format!(
@@ -172,17 +274,83 @@ pub fn describe(text: &str, message: &str, line: u64, column: u64) -> (u64, u64,
         return (
             at,
             1,
-            format!("a scene is one YAML document; found a second one (---) at line {at}"),
+            format!("a {document} is one YAML document; found a second one (---) at line {at}"),
         );
     }
     if let Some(name) = missing_field(message) {
-        return missing(text, name, line, column);
+        return missing(text, name, (line, column), document, needs);
+    }
+    if message.starts_with("unexpected end of input") {
+        return (
+            line,
+            column,
+            format!("the {document} is empty (or ends inside a value): {needs}"),
+        );
+    }
+    // A word where a mapping belongs (`load: impactor`): the parser asks for the mapping at
+    // the next key, on the next line; the word is the value before it.
+    let (line, column) = match message {
+        "expected mapping start" => value_before(text, line, column).unwrap_or((line, column)),
+        _ => (line, column),
+    };
+    let number_expected = matches!(message, "expected a number" | "invalid floating point");
+    if let Some(token) = overflowing_number(text, line, column).filter(|_| number_expected) {
+        return (
+            line,
+            column,
+            with_field(
+                &field_at(text, line, column),
+                format!("{token} is beyond the largest number (1.8e308): must be a finite number"),
+            ),
+        );
     }
     (
         line,
         column,
         explain(message, &field_at(text, line, column)),
     )
+}
+
+/// When `line`, `column` is the start of a key, the plain value written on the nearest line
+/// above it (`load: impactor` above `time:`): its line and column.
+fn value_before(text: &str, line: u64, column: u64) -> Option<(u64, u64)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let here = without_comment(lines.get((line as usize).checked_sub(1)?)?);
+    let indent = here.len() - here.trim_start().len();
+    if (column as usize).checked_sub(1)? != indent || split_key(here.trim_start()).is_none() {
+        return None;
+    }
+    let (i, above) = lines[..line as usize - 1]
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(i, l)| (i, without_comment(l)))
+        .find(|(_, l)| !l.trim().is_empty())?;
+    let (_, after) = split_key(above.trim_start().trim_start_matches("- "))?;
+    let value = after.trim();
+    if value.is_empty() || value.starts_with(['{', '[', '|', '>', '&', '*', '!']) {
+        return None;
+    }
+    let col = above.len() - after.trim_start().len();
+    Some((i as u64 + 1, col as u64 + 1))
+}
+
+/// The number written at `line`, `column` when it overflows double precision (`1e999`),
+/// which the parser reports as no number at all.
+fn overflowing_number(text: &str, line: u64, column: u64) -> Option<String> {
+    let raw = text.lines().nth((line as usize).checked_sub(1)?)?;
+    let rest: String = raw
+        .chars()
+        .skip((column as usize).checked_sub(1)?)
+        .collect();
+    let end = rest
+        .find(|c: char| c == ',' || c == '}' || c == ']' || c == '#' || c.is_whitespace())
+        .unwrap_or(rest.len());
+    let token = &rest[..end];
+    let x: f64 = token.parse().ok()?;
+    let digits = token.chars().next()?.is_ascii_digit() || token.starts_with(['-', '+', '.']);
+    (x.is_infinite() && digits && !token.to_ascii_lowercase().contains("inf"))
+        .then(|| token.to_string())
 }
 
 fn with_field(field: &str, words: String) -> String {
@@ -200,7 +368,13 @@ fn missing_field(message: &str) -> Option<&str> {
 
 /// The parser reports a missing field at the last key of the mapping that lacks it: name that
 /// mapping, at its own key's line (a block mapping) or where the parser points (a flow one).
-fn missing(text: &str, name: &str, line: u64, column: u64) -> (u64, u64, String) {
+fn missing(
+    text: &str,
+    name: &str,
+    (line, column): (u64, u64),
+    document: &str,
+    needs: &str,
+) -> (u64, u64, String) {
     let (parent, at) = match block_key_at(text, line, column) {
         Some(indent) => {
             let mut path: Vec<String> = field_at(text, line, column)
@@ -216,7 +390,7 @@ fn missing(text: &str, name: &str, line: u64, column: u64) -> (u64, u64, String)
         return (
             1,
             1,
-            format!("the scene has no `{name}` section (missing field `{name}`); every scene needs plate, material, mesh, load and time"),
+            format!("the {document} has no `{name}` section (missing field `{name}`); {needs}"),
         );
     }
     let (l, c) = at.unwrap_or((1, 1));
@@ -321,6 +495,21 @@ fn closing_quote(line: &str, start: usize, quote: char) -> Option<usize> {
     None
 }
 
+const OTHER_KINDS: &str = "one key naming the kind, with its settings";
+
+/// The scene's choices written as one word, by the field's last key.
+fn words(leaf: &str) -> Option<&'static str> {
+    Some(match leaf {
+        "kinematics" => "`small` or `finite`",
+        "model" => "`half` or `full`",
+        "ends" => "`clamped`, `roller` or `slider`",
+        "indentation_datum" | "force_node" => "`mid-plane` or `top-surface`",
+        "estimate" => "`element` or `global`",
+        "enforcement" => "`kinematic` or `penalty`",
+        _ => return None,
+    })
+}
+
 /// The one-kind mappings of the scene, in words, by the field's last key.
 fn kinds(leaf: &str) -> &'static str {
     match leaf {
@@ -328,7 +517,7 @@ fn kinds(leaf: &str) -> &'static str {
         "contact_law" => "`{paper: {length_unit: m}}` or `{johnson: {datum_depth: m}}`",
         "hardening" => "`{linear: Pa}` or `{table: [[eqps, Pa], ...]}`",
         "rate" => "`{cowper_symonds: {D: 1/s, q: -}}` or `{johnson_cook: {A: Pa, B: Pa, n, C, reference_rate: 1/s, m, thermal: {...}}}`",
-        _ => "one key naming the kind, with its settings",
+        _ => OTHER_KINDS,
     }
 }
 

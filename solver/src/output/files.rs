@@ -6,11 +6,13 @@ use std::fs;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
-use crate::input::budget::{Estimate, MANY_STEPS};
+use crate::input::budget::Estimate;
 use crate::input::error::{Error, Result};
 use crate::input::scene::Scene;
 use crate::mesh::Mesh;
-use crate::output::out_dir::{check_out_dir, clean_stale_staging, in_user_terms, staging_dir};
+use crate::output::out_dir::{
+    check_out_dir, clean_stale_staging, in_user_terms, staging_dir, OutLock,
+};
 use crate::time_loop::energy::BalanceMonitor;
 use crate::time_loop::history::{History, HistorySink};
 use crate::time_loop::integrator::{FieldFrame, Observer};
@@ -231,20 +233,23 @@ pub fn simulate_scene_to_dir_with(
     say: &mut dyn FnMut(String),
 ) -> Result<Outcome> {
     check_out_dir(out_dir, options.force)?;
+    let (_lock, stale_lock) = OutLock::take(out_dir)?;
+    if let Some(path) = stale_lock {
+        say(format!(
+            "removed {}, left by a run that was killed",
+            path.display()
+        ));
+    }
     let estimate = if options.keep_history {
         Estimate::of(scene)
     } else {
         Estimate::of(scene).streamed()
     };
+    for warning in &scene.warnings {
+        say(format!("warning: {warning}"));
+    }
     crate::input::budget::check(scene, &estimate, options.max_memory)?;
     say(format!("simulate: {}", estimate.describe()));
-    if estimate.steps > MANY_STEPS {
-        say(format!(
-            "warning: about {} time steps (more than {}): this run may take hours; shorten time.end or coarsen the mesh if that is not meant",
-            crate::input::budget::count(estimate.steps),
-            crate::input::budget::count(MANY_STEPS)
-        ));
-    }
     for (path, failure) in clean_stale_staging(out_dir) {
         say(match failure {
             None => format!("removed {}, left by a run that was killed", path.display()),

@@ -1,6 +1,7 @@
 //! The output folder of a run: refused when writing there would mix our files with the
-//! user's (`/`, the home folder, a non-empty folder that holds no earlier run), its staging
-//! folder `.NAME.partial-PID/` beside it, and the staging folders that killed runs left.
+//! user's (`/`, the home folder, a non-empty folder that holds no earlier run), its lock
+//! `.NAME.lock` beside it (one run at a time per folder), its staging folder
+//! `.NAME.partial-PID/` beside it, and the staging folders and locks that killed runs left.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -56,6 +57,85 @@ pub fn check_out_dir(out: &Path, force: bool) -> Result<()> {
         OUTPUT_FILES.join(", "),
         OUTPUT_FILES.join(", ")
     ))
+}
+
+/// The lock of an output folder: the file `.NAME.lock` beside it, holding the id of the
+/// process whose run writes into it; removed when dropped (the run's end, its error, or its
+/// stop on Ctrl-C). A second run into the same folder while the first runs is refused
+/// ([`OutLock::take`]); a lock left by a process that no longer runs (killed with SIGKILL, a
+/// second Ctrl-C) is removed and reported by the next run.
+#[derive(Debug)]
+pub struct OutLock {
+    path: PathBuf,
+}
+
+impl OutLock {
+    /// Takes the lock of `out`; also returns the path of a stale lock it removed. Refused
+    /// with [`Error::OutputFolder`] while another run (of any process, this one included)
+    /// holds it.
+    pub fn take(out: &Path) -> Result<(OutLock, Option<PathBuf>)> {
+        let parent = parent_of(out);
+        fs::create_dir_all(parent).map_err(|e| Error::write(parent, e))?;
+        let path = lock_path(out);
+        let pid = std::process::id();
+        // Written whole beside the lock, then linked to its name: the link is atomic and fails
+        // when the lock exists, so a lock is never seen half-written.
+        let draft = parent.join(format!(".{}.lock-{pid}-{}", folder_name(out), next_draft()));
+        fs::write(&draft, format!("{pid}\n")).map_err(|e| Error::write(out, e))?;
+        let mut stale = None;
+        let taken = loop {
+            match fs::hard_link(&draft, &path) {
+                Ok(()) => break Ok(()),
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {}
+                Err(e) => break Err(Error::write(out, e)),
+            }
+            let holder = fs::read_to_string(&path)
+                .ok()
+                .and_then(|t| t.trim().parse::<u32>().ok());
+            match holder {
+                Some(other) if other == pid || process_alive(other) => {
+                    break Err(Error::OutputFolder {
+                        path: out.to_path_buf(),
+                        why: format!(
+                            "another run (process {other}{}) is writing into it now (its lock is {}); wait for it to finish, or give another --out",
+                            if other == pid { ", this one" } else { "" },
+                            path.display()
+                        ),
+                    })
+                }
+                _ if stale.is_some() => {
+                    break Err(Error::write(
+                        &path,
+                        std::io::Error::other("a stale lock keeps coming back"),
+                    ))
+                }
+                _ => {
+                    // Left by a process that no longer runs (or unreadable): remove, retry once.
+                    let _ = fs::remove_file(&path);
+                    stale = Some(path.clone());
+                }
+            }
+        };
+        let _ = fs::remove_file(&draft);
+        taken.map(|()| (OutLock { path }, stale))
+    }
+}
+
+impl Drop for OutLock {
+    fn drop(&mut self) {
+        let _ = fs::remove_file(&self.path);
+    }
+}
+
+/// `.NAME.lock` beside `out`.
+pub fn lock_path(out: &Path) -> PathBuf {
+    parent_of(out).join(format!(".{}.lock", folder_name(out)))
+}
+
+/// A number for a lock's draft file, distinct for each call in this process.
+fn next_draft() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 /// `.NAME.partial-PID` beside `out`: where a run writes before moving its files in.
@@ -183,6 +263,31 @@ mod tests {
         let removed = clean_stale_staging(&out);
         assert_eq!(removed, vec![(dead.clone(), None)]);
         assert!(!dead.exists() && mine.exists());
+        let _ = fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn a_second_run_into_a_locked_folder_is_refused_and_a_dead_runs_lock_is_removed() {
+        let d = temp("lock");
+        let out = d.join("run");
+        let (lock, stale) = OutLock::take(&out).unwrap();
+        assert_eq!(stale, None);
+        assert!(lock_path(&out).is_file());
+        let e = OutLock::take(&out).unwrap_err().to_string();
+        assert!(
+            e.contains("another run (process") && e.contains("is writing into it now"),
+            "{e}"
+        );
+        drop(lock);
+        assert!(!lock_path(&out).exists());
+        // A lock left by a process that no longer runs (above the kernel's largest pid).
+        fs::write(lock_path(&out), "4194400\n").unwrap();
+        let (lock, stale) = OutLock::take(&out).unwrap();
+        assert_eq!(stale, Some(lock_path(&out)));
+        drop(lock);
+        // Nothing else is left beside the folder.
+        let left: Vec<_> = fs::read_dir(&d).unwrap().filter_map(|e| e.ok()).collect();
+        assert!(left.is_empty(), "{left:?}");
         let _ = fs::remove_dir_all(&d);
     }
 

@@ -110,6 +110,11 @@ pub struct Summary {
     /// Heating: the plastic work turned into heat, `beta W_p`, J (whole width).
     #[serde(rename = "heat_J", skip_serializing_if = "Option::is_none")]
     pub heat: Option<f64>,
+    /// The scene's plausibility warnings (`crate::input::plausibility`), as printed: inputs
+    /// whose units look wrong, options that do nothing here, output that swamps the run.
+    /// Absent when there are none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 impl Summary {
@@ -182,6 +187,7 @@ impl Summary {
                 .rate_law()
                 .and_then(|r| r.thermal())
                 .map(|th| th.taylor_quinney * t.final_energy.plastic_work),
+            warnings: scene.warnings.iter().map(ToString::to_string).collect(),
         }
     }
 }

@@ -3,6 +3,7 @@
 //! more than the contact law's maximum force names that maximum, the input that exceeds it
 //! and the alternative that runs it.
 
+use crate::input::error::shown;
 use crate::input::scene::{ContactLawChoice, Impactor, Scene};
 use crate::physics::contact::{BeyondMaximum, LineContactLaw};
 
@@ -58,12 +59,14 @@ impl Failure<'_> {
         let stored = self.law.energy(b.max_force);
         let law = match i.contact_law {
             ContactLawChoice::Paper { length_unit } => format!(
-                "the paper's contact law, eq. (4) (see reference-data/paper/README.md) with length_unit {length_unit} m and nose_radius {} m,",
-                i.nose_radius
+                "the paper's contact law, eq. (4) (see reference-data/paper/README.md) with length_unit {} m and nose_radius {} m,",
+                shown(length_unit),
+                shown(i.nose_radius)
             ),
             ContactLawChoice::Johnson { datum_depth } => format!(
-                "the johnson contact law with datum_depth {datum_depth} m and nose_radius {} m",
-                i.nose_radius
+                "the johnson contact law with datum_depth {} m and nose_radius {} m",
+                shown(datum_depth),
+                shown(i.nose_radius)
             ),
         };
         let alternative = match i.contact_law {
@@ -75,7 +78,8 @@ impl Failure<'_> {
                 };
                 let j = LineContactLaw::new(&johnson, &self.scene.material, self.law.width);
                 format!(
-                    "load.impactor.contact_law: {{johnson: {{datum_depth: {datum_depth}}}}} (its maximum for this scene is {:.3e} N), a larger length_unit, or a softer impact",
+                    "load.impactor.contact_law: {{johnson: {{datum_depth: {}}}}} (its maximum for this scene is {:.3e} N), a larger length_unit, or a softer impact",
+                    shown(datum_depth),
                     j.width * j.max_force_per_width()
                 )
             }
@@ -85,7 +89,7 @@ impl Failure<'_> {
         };
         format!(
             "the impact needs more force than {law} can give (eq. (21) has no root): its maximum is {:.3e} N (at an indentation of {:.3e} m), and this step needs an indentation of {:.3e} m. The input that exceeds it: the impactor's {} kg at {} m/s carries {kinetic:.3e} J, while the law stores at most {stored:.3e} J up to its maximum. Use {alternative}",
-            b.max_force, b.available, b.required, i.mass, i.velocity
+            b.max_force, b.available, b.required, shown(i.mass), shown(i.velocity)
         )
     }
 }

@@ -167,7 +167,17 @@ impl ViscoPlastic {
                 let power = Power::of(exponent);
                 let power_less = Power::of(exponent - 1.0);
                 // x at which the rate factor alone reaches q: the residual is negative there.
-                let hi = R::select(running, q / static_flow - 1.0, R::splat(1.0));
+                let mut hi = R::select(running, q / static_flow - 1.0, R::splat(1.0));
+                if exponent > LARGE_EXPONENT || scale > 1.0 {
+                    // x^q overflows for a large q and x > 1 (inf, then NaN in the Newton step),
+                    // and with D dt > 1 (a unit strain a step at x = 1) Newton's start lies
+                    // orders of magnitude above the root. dk = D dt x^q is at most the
+                    // rate-independent increment without hardening, (q - static_flow) / 3 mu,
+                    // where the residual is <= 0: bound x there.
+                    let bound = ((q - static_flow) * (1.0 / (three_mu * scale)))
+                        .map_lanes(|v| v.max(0.0).powf(1.0 / exponent));
+                    hi = R::select(R::and(running, hi.gt(bound)), bound, hi);
+                }
                 let x = solve_decreasing((zero, hi), running, q * RESIDUAL_TOLERANCE, |x: R| {
                     // dk = D dt x^q and d dk / d x = q D dt x^(q - 1), without a division.
                     let lower = power_less.of_lanes(x);
@@ -201,6 +211,11 @@ impl ViscoPlastic {
         }
     }
 }
+
+/// Cowper-Symonds exponents above this (or `D dt > 1`) bound the Newton bracket so that `x^q`
+/// stays finite and Newton starts near the root (published q lie between about 1 and 15, D dt
+/// below 0.01; the common laws keep their bits and cost).
+const LARGE_EXPONENT: f64 = 32.0;
 
 /// `x^p` for a fixed exponent: by products when `p` is a small whole number (Cowper-Symonds'
 /// usual q = 5: three products instead of a `powf` per lane), else by `f64::powf` lane by
@@ -567,11 +582,53 @@ mod tests {
 
     #[test]
     fn a_huge_d_recovers_the_rate_independent_return() {
+        // 1e100 and 1e300 (D dt > 1) ran into NaN (the bad-input suite, issue 28): Newton
+        // started where D dt x^q is ~1e90 strain a step.
+        for d in [1e30, 1e100, 1e300] {
+            rate_independent_limit(RateLaw::CowperSymonds { d, q: 5.0 });
+        }
+    }
+
+    #[test]
+    fn a_huge_q_recovers_the_rate_independent_return_times_two() {
+        // (rate / D)^(1/q) -> 1 for any flow: the static curve doubled (yield stress and plastic
+        // modulus H = E Et / (E - Et) twice). q = 1000 and 1e4 ran into NaN (x^q overflowed in
+        // the Newton step; the bad-input suite, issue 28).
+        let (e, et) = (200e9, 2e9);
+        let h2 = 2.0 * e * et / (e - et);
+        let doubled = crate::physics::material::VonMises::new(&MaterialSpec {
+            density: 7850.0,
+            youngs_modulus: e,
+            poisson_ratio: 0.3,
+            plasticity: Some(Plasticity {
+                yield_stress: 500e6,
+                hardening: Hardening::Linear {
+                    tangent_modulus: h2 * e / (e + h2),
+                },
+                rate: None,
+            }),
+        })
+        .unwrap();
+        for q in [1e3, 1e4] {
+            let h = Hardening::Linear {
+                tangent_modulus: et,
+            };
+            let m = steel(h, 250e6, RateLaw::CowperSymonds { d: 40.0, q }, 1e-5);
+            let (mut s, mut batch) = (ViscoState::default(), PlasticBatch::default());
+            for i in 1..=100 {
+                let strain = [1e-4 * i as f64, 0.0, 0.0, 0.0];
+                let a = update(&m, &strain, &mut s);
+                let b = doubled.update(&strain, &mut batch, 0, true);
+                assert_relative_eq!(a.stress[0], b.stress[0], max_relative = 2e-3);
+            }
+        }
+    }
+
+    fn rate_independent_limit(law: RateLaw) {
         let h = Hardening::Linear {
             tangent_modulus: 2e9,
         };
         let dt = 1e-5;
-        let law = RateLaw::CowperSymonds { d: 1e30, q: 5.0 };
         let m = steel(h.clone(), 250e6, law, dt);
         let ri = crate::physics::material::VonMises::new(&MaterialSpec {
             density: 7850.0,

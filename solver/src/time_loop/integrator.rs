@@ -321,6 +321,23 @@ fn chosen_step(scene: &Scene, dt_critical: f64) -> Result<f64> {
     }
 }
 
+/// Why the energies left double precision (inf or NaN): the inputs beyond any physical
+/// magnitude when the scene has some (no time step can make those arithmetic finite), else
+/// the numbers grew without bound (an instability past the guard's bound within one step).
+fn overflow_cause(scene: &Scene, total: f64, initial: f64) -> String {
+    let extreme = crate::input::plausibility::extreme_inputs(scene);
+    if extreme.is_empty() {
+        format!(
+            "the arithmetic overflowed: total energy {total:.6e} J (from {initial:.6e} J); the solution grew without bound within a step: lower time.dt, or check the inputs' units"
+        )
+    } else {
+        format!(
+            "the arithmetic overflowed: total energy {total:.6e} J (from {initial:.6e} J), because of {}: beyond any physical value of this problem, no time step makes it computable; give it a physical value (SI units)",
+            extreme.join(", ")
+        )
+    }
+}
+
 /// When the run ends: at `time.end`, or `after` s after contact ends (at most at `limit`).
 struct Clock {
     /// s
@@ -596,6 +613,13 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         } else {
             BLOW_UP_BALANCE_ERROR
         };
+        if !(energies.total().is_finite() && self.initial_energy.total().is_finite()) {
+            return Err(Error::Run {
+                step: n,
+                time_s: t,
+                what: overflow_cause(self.scene, energies.total(), self.initial_energy.total()),
+            });
+        }
         if !balance_error.is_finite() || balance_error > bound {
             return Err(Error::Run {
                 step: n,

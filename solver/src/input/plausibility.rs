@@ -1,0 +1,568 @@
+//! Plausibility warnings: inputs a scene accepts that look wrong. A warning never stops a run
+//! (each value may be meant); it names the field, where it is written, its value and why it
+//! looks wrong. `impact simulate` prints them on stderr before the run, `summary.json` keeps
+//! them (`warnings`), the Python package raises them as `impact.SceneWarning`.
+//!
+//! - **Units.** Scenes are in SI units; the usual slip is another unit system, above all the
+//!   millimetre-tonne-second one of many FE codes (lengths in mm, density in t/mm^3 = 7.85e-9
+//!   for steel, moduli and stresses in MPa). Each threshold is one no solid plate of this model
+//!   crosses in SI, and the same value in that other unit does (see each rule).
+//! - **Options that do nothing here** (`mesh.hourglass` without `q4-1pt`, `time.limit` with a
+//!   fixed end, `after_contact` without an impactor, ...).
+//! - **Output that swamps the run**: a history row or a VTK frame every step, field output of
+//!   more than [`FIELD_BYTES_WARNING`], more than [`MANY_STEPS`] steps.
+//! - **Quoted numbers and string booleans** in a scene file: read as the number (or boolean),
+//!   with a warning. They are not refused because PyYAML (YAML 1.1) loads `207.0e9` from our
+//!   own scene files as the string `'207.0e9'`, so dict scenes carry such strings; for the
+//!   same reason dict scenes (source `<dict>`) get no quote warning.
+
+use std::fmt;
+
+use crate::input::budget::{bytes, count, p_wave_speed, Estimate, MANY_STEPS};
+use crate::input::error::{shown, SourceLocation};
+use crate::input::scene::{DtChoice, ElementKind, End, Load, Scene};
+
+/// One input that looks wrong.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Warning {
+    pub location: SourceLocation,
+    /// Dotted field name, e.g. `plate.length`.
+    pub field: String,
+    /// The value as read (or as written, for a quoted one).
+    pub value: String,
+    /// Why it looks wrong and what was probably meant.
+    pub message: String,
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}: {} = {}: {}",
+            self.location, self.field, self.value, self.message
+        )
+    }
+}
+
+/// Plate length and width above this (m) look like millimetres: every plate of 10 mm or more
+/// given in mm crosses it, and a clamped plate of more than 10 m struck by a line nose is no
+/// scene this plane-strain model is for.
+pub const PLATE_SPAN_MAX: f64 = 10.0;
+/// Plate thickness above this (m) looks like millimetres (any plate of 1 mm or more in mm).
+pub const PLATE_THICKNESS_MAX: f64 = 1.0;
+/// Nose radius above this (m) looks like millimetres (any nose of 1 mm or more in mm); the
+/// surface-contact scenes use up to 0.5 m.
+pub const NOSE_RADIUS_MAX: f64 = 1.0;
+/// Densities (kg/m^3) between aerogel (~1) and far beyond osmium (22 590); steel in t/mm^3
+/// is 7.85e-9, in g/cm^3 7.85 (caught by the wave speed below).
+pub const DENSITY_RANGE: (f64, f64) = (1.0, 1.0e5);
+/// Young's moduli (Pa) from soft rubber (~1e6) to diamond (1.2e12); steel in MPa is 2.07e5,
+/// in GPa 207.
+pub const MODULUS_RANGE: (f64, f64) = (1.0e6, 1.2e12);
+/// P-wave speeds (m/s) of solids, from soft rubber (~20) to diamond (~18 000): outside, the
+/// density and the modulus are in units that do not match.
+pub const WAVE_SPEED_RANGE: (f64, f64) = (20.0, 2.0e4);
+/// Yield stresses (Pa) below this (0.1 MPa, below any metal's or polymer's) look like MPa.
+pub const YIELD_STRESS_MIN: f64 = 1.0e5;
+/// Impactor speeds (m/s) above this are no low-velocity impact (no equation of state, no
+/// erosion here); 10 m/s in mm/s is 10 000.
+pub const VELOCITY_MAX: f64 = 1.0e3;
+/// SI values of this problem lie between ~1e-12 (time steps, s) and ~1e13 (moduli, Pa); an
+/// input beyond 1e-30 .. 1e30 in magnitude is a typo, and products of two such numbers leave
+/// double precision (inf, NaN).
+pub const EXTREME: (f64, f64) = (1.0e-30, 1.0e30);
+/// VTK field output beyond this many bytes is announced with its size.
+pub const FIELD_BYTES_WARNING: f64 = 1.0e9;
+/// The estimated stable step is within this factor of the solver's own (budget.rs); a history
+/// or field interval below the estimate over it is below the step whatever the solver finds.
+const STEP_ESTIMATE_FACTOR: f64 = 1.5;
+
+/// The warnings of a validated scene; `text` is the scene's YAML text (for quoted values).
+pub fn warnings(scene: &Scene, text: Option<&str>) -> Vec<Warning> {
+    let mut w = Finder {
+        scene,
+        found: Vec::new(),
+    };
+    w.units();
+    w.options();
+    w.output();
+    if let Some(text) = text {
+        if scene.source.as_os_str() != "<dict>" {
+            w.quoted(text);
+        }
+    }
+    w.extremes();
+    w.found
+}
+
+struct Finder<'a> {
+    scene: &'a Scene,
+    found: Vec<Warning>,
+}
+
+impl Finder<'_> {
+    fn warn(&mut self, field: &str, value: impl fmt::Display, message: String) {
+        self.found.push(Warning {
+            location: self.scene.fields.location(field, &self.scene.source),
+            field: field.to_string(),
+            value: value.to_string(),
+            message,
+        });
+    }
+
+    fn warned(&self, field: &str) -> bool {
+        self.found.iter().any(|w| w.field == field)
+    }
+
+    fn given(&self, field: &str) -> bool {
+        self.scene.fields.get(field).is_some()
+    }
+
+    fn units(&mut self) {
+        let s = self.scene;
+        let p = s.plate;
+        for (field, x, max) in [
+            ("plate.length", p.length, PLATE_SPAN_MAX),
+            ("plate.width", p.width, PLATE_SPAN_MAX),
+            ("plate.thickness", p.thickness, PLATE_THICKNESS_MAX),
+        ] {
+            if x > max {
+                self.warn(field, shown(x), format!(
+                    "a plate of {} m is unusual: lengths are in metres, and above {max} m this looks like millimetres (200 mm is 0.2)",
+                    shown(x)
+                ));
+            }
+        }
+        let m = &s.material;
+        let (lo, hi) = DENSITY_RANGE;
+        if m.density < lo {
+            self.warn("material.density", shown(m.density), format!(
+                "below {lo} kg/m^3, lighter than any solid (aerogels are about 1): density is in kg/m^3 (steel is 7850; 7.85e-9 is steel in t/mm^3)"
+            ));
+        } else if m.density > hi {
+            self.warn("material.density", shown(m.density), format!(
+                "above {} kg/m^3, denser than any solid (osmium is 22 590): density is in kg/m^3 (steel is 7850)",
+                shown(hi)
+            ));
+        }
+        self.modulus("material.youngs_modulus", m.youngs_modulus);
+        if let Some(i) = s.impactor() {
+            self.modulus("load.impactor.youngs_modulus", i.youngs_modulus);
+        }
+        let c = p_wave_speed(m);
+        let (slow, fast) = WAVE_SPEED_RANGE;
+        let material_warned =
+            self.warned("material.density") || self.warned("material.youngs_modulus");
+        if !material_warned && !(slow..=fast).contains(&c) {
+            self.warn("material.density", shown(m.density), format!(
+                "with youngs_modulus = {} Pa and poisson_ratio = {} the P-wave speed is {c:.3e} m/s, outside that of any solid (about {slow} m/s for soft rubber to 18 000 m/s for diamond): density and youngs_modulus look like different units (steel: 7850 kg/m^3 and 2.07e11 Pa)",
+                shown(m.youngs_modulus), m.poisson_ratio
+            ));
+        }
+        if let Some(pl) = &m.plasticity {
+            let field = if self.given("material.plasticity.yield_stress") {
+                "material.plasticity.yield_stress"
+            } else {
+                "material.plasticity.rate.johnson_cook.A"
+            };
+            if pl.yield_stress < YIELD_STRESS_MIN {
+                self.warn(field, shown(pl.yield_stress), format!(
+                    "below {} Pa (0.1 MPa), under any metal's or polymer's yield stress: stresses are in Pa (250 MPa is 2.5e8)",
+                    shown(YIELD_STRESS_MIN)
+                ));
+            } else if pl.yield_stress > m.youngs_modulus {
+                self.warn(field, shown(pl.yield_stress), format!(
+                    "above youngs_modulus = {} Pa: the plate would yield only past a strain of 1; the two look like different units",
+                    shown(m.youngs_modulus)
+                ));
+            }
+        }
+        if let Some((_, v)) = s.impactor_motion() {
+            if v > VELOCITY_MAX {
+                self.warn("load.impactor.velocity", shown(v), format!(
+                    "above {} m/s: this solver is for low-velocity impact (no equation of state, no erosion); velocities are in m/s (10 m/s is not 10000 mm/s)",
+                    shown(VELOCITY_MAX)
+                ));
+            }
+        }
+        if let Some(i) = s.impactor() {
+            // The explicit coupling (eq. 21) of an impactor of mass m with a contact of
+            // stiffness k is stable for dt < 2 sqrt(m / k); a line contact is at most about as
+            // stiff as the plate under it, k ~ E W (its log factor makes it softer), so below
+            // m = E W dt^2 / 4 the impactor bounces within a step.
+            let dt = Estimate::of(s).dt;
+            let bound = m.youngs_modulus * p.width * dt * dt / 4.0;
+            let runs = crate::input::time_step::check_steps(s, dt).is_ok() && bound.is_finite();
+            if runs && i.mass < bound && !self.warned("load.impactor.mass") {
+                self.warn("load.impactor.mass", shown(i.mass), format!(
+                    "below E W dt^2 / 4 = {bound:.3e} kg (youngs_modulus, plate.width and the time step of about {dt:.2e} s): the explicit contact coupling (eq. 21) is not stable for so light an impactor against a contact as stiff as the plate, it bounces within a step; the run's results will not be physical"
+                ));
+            }
+        }
+        let radius = match &s.load {
+            Load::Impactor(i) => Some(i.nose_radius),
+            Load::SurfaceImpactor(i) => Some(i.nose_radius),
+            Load::Pulse(_) | Load::Traction(_) => None,
+        };
+        if let Some(r) = radius.filter(|r| *r > NOSE_RADIUS_MAX) {
+            self.warn("load.impactor.nose_radius", shown(r), format!(
+                "a nose radius above {NOSE_RADIUS_MAX} m is unusual: lengths are in metres, and this looks like millimetres (10 mm is 0.01)"
+            ));
+        }
+    }
+
+    fn modulus(&mut self, field: &str, e: f64) {
+        let (lo, hi) = MODULUS_RANGE;
+        if e < lo {
+            self.warn(field, shown(e), format!(
+                "below {} Pa, softer than soft rubber: moduli are in Pa (steel is 2.07e11; 2.07e5 is steel in MPa, 207 in GPa)",
+                shown(lo)
+            ));
+        } else if e > hi {
+            self.warn(
+                field,
+                shown(e),
+                format!(
+                    "above {} Pa, stiffer than diamond: moduli are in Pa (steel is 2.07e11)",
+                    shown(hi)
+                ),
+            );
+        }
+    }
+
+    /// Options given that do nothing in this scene.
+    fn options(&mut self) {
+        let s = self.scene;
+        if s.mesh.element != ElementKind::Q4OnePoint {
+            if let Some(h) = self.value("mesh.hourglass") {
+                self.warn("mesh.hourglass", shown(h), format!(
+                    "does nothing with element: {} (hourglass control is q4-1pt's): remove it, or use element: q4-1pt",
+                    s.mesh.element.name()
+                ));
+            }
+        }
+        let limit = self.value("time.limit");
+        match s.time.end {
+            End::At(end) => {
+                if let Some(l) = limit {
+                    self.warn("time.limit", shown(l), format!(
+                        "does nothing with time.end = {} s (a fixed end): time.limit bounds only time.end: {{after_contact: s}}",
+                        shown(end)
+                    ));
+                }
+            }
+            End::AfterContact { after, limit } => {
+                if s.impactor_motion().is_none() {
+                    self.warn("time.end.after_contact", shown(after), format!(
+                        "does nothing without an impactor (a pulse or traction load has no contact that ends): the run goes on to time.limit = {} s; give time.end in seconds",
+                        shown(limit)
+                    ));
+                } else if after >= limit {
+                    self.warn("time.end.after_contact", shown(after), format!(
+                        "is not shorter than time.limit = {} s: the run always stops at time.limit, never after the contact",
+                        shown(limit)
+                    ));
+                }
+            }
+        }
+        if let (true, DtChoice::Cfl(c)) = (s.time.allow_unstable_dt, s.time.dt) {
+            if c <= 1.0 {
+                self.warn("time.allow_unstable_dt", "true", format!(
+                    "does nothing with time.dt.cfl = {c} (at most the stable step): it only lets a cfl above 1 or a fixed step above the stable one run"
+                ));
+            }
+        }
+        if let Load::Pulse(p) = &s.load {
+            if p.force == 0.0 {
+                self.warn(
+                    "load.pulse.force",
+                    "0",
+                    "the plate is never loaded: the run computes a plate at rest".into(),
+                );
+            }
+        }
+    }
+
+    /// Output that swamps the run, and runs of very many steps.
+    fn output(&mut self) {
+        let s = self.scene;
+        let e = Estimate::of(s);
+        if crate::input::time_step::check_steps(s, e.dt).is_err() {
+            return; // no run: the time step's refusal says why
+        }
+        // Below this the interval is below the step whatever the solver's own estimate.
+        let step = match s.time.dt {
+            DtChoice::Fixed(d) => d,
+            DtChoice::Cfl(_) => e.dt / STEP_ESTIMATE_FACTOR,
+        };
+        if let Some(every) = s.output.every.filter(|x| *x < step) {
+            self.warn("output.every", shown(every), format!(
+                "below the time step (about {:.2e} s): the history gets a row every step ({} rows); raise output.every, or leave it out for every step on purpose",
+                e.dt, count(e.history_rows)
+            ));
+        }
+        if let Some(every) = s.output.fields_every {
+            if every < step {
+                self.warn("output.fields.every", shown(every), format!(
+                    "below the time step (about {:.2e} s): a VTK field frame every step, about {} frames, about {} on disk; raise output.fields.every",
+                    e.dt, count(e.field_frames), bytes(e.field_bytes)
+                ));
+            } else if e.field_bytes > FIELD_BYTES_WARNING {
+                self.warn("output.fields.every", shown(every), format!(
+                    "about {} VTK field frames of {} elements, about {} on disk; raise output.fields.every if that is not meant",
+                    count(e.field_frames), count(e.elements), bytes(e.field_bytes)
+                ));
+            }
+        }
+        if e.steps > MANY_STEPS {
+            let (field, end) = match s.time.end {
+                End::At(t) => ("time.end", t),
+                End::AfterContact { limit, .. } => ("time.limit", limit),
+            };
+            self.warn(field, shown(end), format!(
+                "about {} time steps of {:.2e} s (more than {}): this run may take hours; shorten time.end or coarsen the mesh if that is not meant",
+                count(e.steps), e.dt, count(MANY_STEPS)
+            ));
+        }
+    }
+
+    /// A number written in quotes, a boolean written other than `true`/`false`.
+    fn quoted(&mut self, text: &str) {
+        let lines: Vec<&str> = text.lines().collect();
+        let mut found = Vec::new();
+        for (field, read) in self.scene.fields.iter() {
+            let Some(token) = token_at(&lines, &read.at) else {
+                continue;
+            };
+            if field == "time.allow_unstable_dt" {
+                if token != "true" && token != "false" {
+                    let meant = self.scene.time.allow_unstable_dt;
+                    found.push((
+                        field.to_string(),
+                        token.clone(),
+                        format!("written `{token}`, read as {meant}: write true or false"),
+                    ));
+                }
+            } else if let (Some(x), true) = (read.value, token.starts_with(['"', '\''])) {
+                found.push((field.to_string(), token.clone(), format!(
+                    "a number in quotes, read as {}: write numbers without quotes (a quoted number is often a unit slip or a template's text)",
+                    shown(x)
+                )));
+            }
+        }
+        for (field, token, message) in found {
+            self.warn(&field, token, message);
+        }
+    }
+
+    /// Any other number beyond [`EXTREME`] in magnitude.
+    fn extremes(&mut self) {
+        let (tiny, huge) = EXTREME;
+        let extreme: Vec<(String, f64)> = extreme_fields(self.scene)
+            .into_iter()
+            .filter(|(field, _)| !self.warned(field))
+            .collect();
+        for (field, x) in extreme {
+            self.warn(&field, shown(x), format!(
+                "beyond any physical value of this problem in SI units ({} to {} in magnitude): a typo? The arithmetic may overflow",
+                shown(tiny), shown(huge)
+            ));
+        }
+    }
+
+    fn value(&self, field: &str) -> Option<f64> {
+        self.scene.fields.value(field)
+    }
+}
+
+/// The scalar written at `at` (1-based line and column) as it reads in the text: a quoted
+/// string with its quotes, else up to the next `,`, `}`, `]` or comment.
+fn token_at(lines: &[&str], at: &SourceLocation) -> Option<String> {
+    let line = lines.get((at.line as usize).checked_sub(1)?)?;
+    let rest: String = line
+        .chars()
+        .skip((at.column as usize).checked_sub(1)?)
+        .collect();
+    let first = rest.chars().next()?;
+    if first == '"' || first == '\'' {
+        let close = rest[1..].find(first).map_or(rest.len(), |i| i + 2);
+        return Some(rest[..close].to_string());
+    }
+    let end = rest.find([',', '}', ']', '#']).unwrap_or(rest.len());
+    Some(rest[..end].trim().to_string())
+}
+
+/// The numbers beyond [`EXTREME`] in magnitude: above 1e30, or below 1e-30 for a quantity
+/// the scene requires to be > 0 (a quantity that may be 0, such as a Poisson's ratio or a
+/// probe's coordinate, may be as small as it likes), in field order.
+pub fn extreme_fields(scene: &Scene) -> Vec<(String, f64)> {
+    let (tiny, huge) = EXTREME;
+    scene
+        .fields
+        .iter()
+        .filter_map(|(field, read)| {
+            let x = read.value?;
+            let a = x.abs();
+            (a > huge || (read.positive && a < tiny)).then(|| (field.to_string(), x))
+        })
+        .collect()
+}
+
+/// [`extreme_fields`] as `field = value`, for a run whose numbers overflowed (inf or NaN).
+pub fn extreme_inputs(scene: &Scene) -> Vec<String> {
+    extreme_fields(scene)
+        .into_iter()
+        .map(|(field, x)| format!("{field} = {}", shown(x)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    //! The rules on the example scene: it warns nothing as written (nor does any scene of the
+    //! repository but the rigid target of a code-verification case, whose density is 1e15 on
+    //! purpose); each slip warns once, naming the field where the file writes it.
+    use super::*;
+    use std::path::Path;
+
+    const EXAMPLE: &str = include_str!("../../../verification/scenes/example-elastic.yaml");
+
+    fn warned(edit: impl Fn(&str) -> String, source: &str) -> Vec<String> {
+        let scene = Scene::from_yaml(&edit(EXAMPLE), Path::new(source)).expect("a valid scene");
+        scene.warnings.iter().map(ToString::to_string).collect()
+    }
+
+    fn one(edit: impl Fn(&str) -> String) -> String {
+        let w = warned(edit, "s.yaml");
+        assert_eq!(w.len(), 1, "{w:?}");
+        w[0].clone()
+    }
+
+    #[test]
+    fn the_repository_scenes_warn_nothing() {
+        assert_eq!(warned(|s| s.to_string(), "s.yaml"), Vec::<String>::new());
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../verification/scenes");
+        let mut files = vec![];
+        for dir in [root.clone(), root.join("paper-table2")] {
+            for e in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
+                if e.path().extension().is_some_and(|x| x == "yaml") {
+                    files.push(e.path());
+                }
+            }
+        }
+        assert!(files.len() > 20);
+        for f in files {
+            let scene = Scene::from_file(&f).unwrap();
+            assert!(
+                scene.warnings.is_empty(),
+                "{}: {:?}",
+                f.display(),
+                scene.warnings
+            );
+        }
+    }
+
+    #[test]
+    fn units_that_look_wrong_warn_at_their_value() {
+        // Steel in t/mm^3: and its step of 1e-13 s makes 2.5e10 steps.
+        let w = warned(
+            |s| s.replace("density: 7850.0", "density: 7.85e-9"),
+            "s.yaml",
+        );
+        assert!(
+            w[0].starts_with("s.yaml:5:12: material.density = 7.85e-9: below 1 kg/m^3"),
+            "{w:?}"
+        );
+        assert!(w[1].contains("this run may take hours"), "{w:?}");
+        // Steel's modulus in MPa, the step then 1e-4 s: the history's every 1e-6 s is below it.
+        let w = warned(
+            |s| s.replacen("youngs_modulus: 207.0e9", "youngs_modulus: 2.07e5", 1),
+            "s.yaml",
+        );
+        assert!(
+            w[0].starts_with("s.yaml:6:19: material.youngs_modulus = 207000: below 1e6 Pa"),
+            "{w:?}"
+        );
+        assert!(
+            w.len() == 2 && w[1].contains("output.every = 1e-6: below the time step"),
+            "{w:?}"
+        );
+        // 7.85 (g/cm^3) is a density some solid could have: the wave speed tells.
+        let w = one(|s| s.replace("density: 7850.0", "density: 7.85"));
+        assert!(w.contains("P-wave speed is 1.884e5 m/s"), "{w}");
+        let w = warned(
+            |s| {
+                s.replace(
+                    "{length: 0.200, width: 0.200, thickness: 0.020}",
+                    "{length: 200, width: 200, thickness: 20}",
+                )
+                .replace("x: 0.100", "x: 100")
+            },
+            "s.yaml",
+        );
+        assert!(
+            w[0].starts_with("s.yaml:3:17: plate.length = 200: a plate of 200 m"),
+            "{w:?}"
+        );
+        assert!(
+            w.iter().any(|x| x.contains("plate.thickness = 20")),
+            "{w:?}"
+        );
+        let w = one(|s| s.replace("velocity: 10.0", "velocity: 10000"));
+        assert!(
+            w.contains("load.impactor.velocity = 10000: above 1000 m/s"),
+            "{w}"
+        );
+        let w = one(|s| s.replace("mass: 18.0", "mass: 1.0e-6"));
+        assert!(
+            w.contains("load.impactor.mass = 1e-6: below E W dt^2 / 4"),
+            "{w}"
+        );
+    }
+
+    #[test]
+    fn options_that_do_nothing_warn() {
+        let w = one(|s| s.replace("element: q4-sri,", "element: q4-sri, hourglass: 0.1,"));
+        assert!(
+            w.contains("mesh.hourglass = 0.1: does nothing with element: q4-sri"),
+            "{w}"
+        );
+        let w = one(|s| s.replace("  dt: {cfl: 0.8}", "  dt: {cfl: 0.8}\n  limit: 0.01"));
+        assert!(
+            w.contains("time.limit = 0.01: does nothing with time.end = 0.003 s"),
+            "{w}"
+        );
+        let w = one(|s| {
+            s.replace(
+                "  dt: {cfl: 0.8}",
+                "  dt: {cfl: 0.8}\n  allow_unstable_dt: true",
+            )
+        });
+        assert!(
+            w.contains("time.allow_unstable_dt = true: does nothing"),
+            "{w}"
+        );
+        let w = one(|s| s.replace("fields: {every: 1.0e-4}", "fields: {every: 1.0e-12}"));
+        assert!(w.contains("a VTK field frame every step, about"), "{w}");
+    }
+
+    #[test]
+    fn quoted_numbers_warn_in_a_file_not_in_a_dict_scene() {
+        let quoted = |s: &str| s.replace("density: 7850.0", "density: \"7850.0\"");
+        let w = warned(quoted, "s.yaml");
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(
+            w[0].starts_with(
+                "s.yaml:5:12: material.density = \"7850.0\": a number in quotes, read as 7850"
+            ),
+            "{w:?}"
+        );
+        assert!(warned(quoted, "<dict>").is_empty());
+        let w = one(|s| {
+            s.replace(
+                "  dt: {cfl: 0.8}",
+                "  dt: {cfl: 1.0}\n  allow_unstable_dt: \"no\"",
+            )
+        });
+        assert!(w.contains("written `\"no\"`, read as false"), "{w}");
+    }
+}
