@@ -24,8 +24,8 @@ pub use kernels::{assembly, batch, elastic_screen, row_batches, stiffness, worke
 pub use lanes::{heap, real, simd};
 pub use output::{out_dir, summary};
 pub use physics::{
-    centroid, contact, contact_failure, element, finite_element, finite_material, geometry,
-    impactor, kinematics, load, material, rate_plasticity,
+    axisymmetric, centroid, contact, contact_failure, element, finite_element, finite_material,
+    geometry, impactor, kinematics, load, material, rate_plasticity,
 };
 pub use time_loop::{
     energy, history, integrator, internal_forces, interrupt, model, progress, stable_step,
@@ -110,7 +110,7 @@ pub fn simulate_on(
     };
     input::budget::check(scene, &estimate, max_memory)?;
     let started = Instant::now();
-    let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
+    let mesh = PlateMesh::of_scene(scene);
     let run = Run {
         scene,
         mesh: &mesh,

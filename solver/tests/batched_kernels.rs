@@ -11,16 +11,19 @@
 //!   Table 1 plate with Cowper-Symonds and with Johnson-Cook and heating.
 //! - Both kinematics: every combination above (but the small-strain stiffness matrices) also
 //!   under finite deformation, and the Table 1 plate under finite deformation.
+//! - Both geometries: every small-strain combination (but the stiffness matrices) also in the
+//!   axisymmetric geometry, and the Table 1 plate under surface contact as a round plate.
 
 use std::path::Path;
 
 use impact_solver::element::Formulation;
+use impact_solver::input::geometry::Geometry;
 use impact_solver::input::rate_law::{johnson_cook_42crmo4, RateLaw};
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
 use impact_solver::model::{self, Kernel, UseModel};
-use impact_solver::scene::{ElementKind, Hardening, Kinematics, Plasticity};
+use impact_solver::scene::{ElementKind, Hardening, Kinematics, Model, Plasticity};
 use impact_solver::simd::{Isa, KernelPath, LANES};
 use impact_solver::{simulate_on, History, Quiet, Scene};
 
@@ -28,6 +31,7 @@ const ELASTIC: &str = include_str!("../../verification/scenes/example-elastic.ya
 const PLASTIC: &str = include_str!("../../verification/scenes/example-plastic.yaml");
 const PAPER_ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
 const PAPER_PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
+const PAPER_SURFACE: &str = include_str!("../../verification/scenes/paper-plastic-surface.yaml");
 const PAPER_COWPER_SYMONDS: &str =
     include_str!("../../verification/scenes/paper-plastic-cowper-symonds.yaml");
 
@@ -187,16 +191,27 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
             ]
             .map(|k| (k, "linear"));
             let plastic = PLASTIC_VARIANTS.map(|v| (Kernel::Plastic, v));
-            let both = elastic.into_iter().chain(plastic).flat_map(|k| {
-                [Kinematics::Small, Kinematics::Finite].map(|kinematics| (k, kinematics))
-            });
-            for ((kernel, table), kinematics) in both {
-                if kinematics == Kinematics::Finite && kernel == Kernel::ElasticStiffnessMatrix {
+            let variants = [
+                (Kinematics::Small, Geometry::PlaneStrain),
+                (Kinematics::Finite, Geometry::PlaneStrain),
+                (Kinematics::Small, Geometry::Axisymmetric),
+            ];
+            let all = elastic
+                .into_iter()
+                .chain(plastic)
+                .flat_map(|k| variants.map(|v| (k, v)));
+            for ((kernel, table), (kinematics, geometry)) in all {
+                let small_plane = (kinematics, geometry) == variants[0];
+                if !small_plane && kernel == Kernel::ElasticStiffnessMatrix {
                     continue;
                 }
                 let mut s = scene(nx, ny, element, case as u64, table);
                 s.kinematics = kinematics;
-                let mesh = PlateMesh::new(&s.plate, &s.mesh);
+                s.geometry = geometry;
+                if geometry == Geometry::Axisymmetric {
+                    s.mesh.model = Model::Half;
+                }
+                let mesh = PlateMesh::of_scene(&s);
                 let u = fields(&mesh, &mut random, s.plate.length);
                 let reference =
                     model::build_on(&s, &mesh, kernel, KernelPath::Scalar, Trace(&u)).unwrap();
@@ -205,7 +220,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
                     for (call, (a, b)) in reference.iter().zip(&traced).enumerate() {
                         assert!(
                             a == b,
-                            "{} {kernel:?} {table} {kinematics:?} {nx}x{ny} call {call} on {}: differs",
+                            "{} {kernel:?} {table} {kinematics:?} {geometry:?} {nx}x{ny} call {call} on {}: differs",
                             element.name(),
                             path.name()
                         );
@@ -225,7 +240,7 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
             }
         }
     }
-    assert_eq!(yielded_and_elastic, 2 * 4 * 3 * PLASTIC_VARIANTS.len());
+    assert_eq!(yielded_and_elastic, 3 * 4 * 3 * PLASTIC_VARIANTS.len());
 }
 
 /// A whole run's summary without its timings, and its history.
@@ -249,8 +264,13 @@ fn whole_runs_are_bit_identical_on_both_paths() {
         ("paper-plastic-cowper-symonds", PAPER_COWPER_SYMONDS),
         ("paper-plastic-johnson-cook-heating", PAPER_PLASTIC),
         ("paper-plastic-finite", PAPER_PLASTIC),
+        ("paper-plastic-surface-axisymmetric", PAPER_SURFACE),
     ] {
         let mut s = Scene::from_yaml(text, Path::new(name)).unwrap();
+        if name.ends_with("axisymmetric") {
+            s.geometry = Geometry::Axisymmetric;
+            s.time.end = impact_solver::scene::End::At(1e-3);
+        }
         if name.ends_with("finite") {
             s.kinematics = Kinematics::Finite;
         }

@@ -142,6 +142,52 @@ fn structural_errors_name_line_and_column() {
     );
 }
 
+/// `geometry: axisymmetric` and what it cannot run with, each refused at the key with the
+/// way out (the example scene: the nodal contact law).
+#[test]
+fn the_axisymmetric_geometry_names_what_it_cannot_run_with() {
+    let surface = |s: &str| {
+        let start = s.find("    youngs_modulus: 207.0e9\n    poisson").unwrap();
+        let end = s.find("  # instead of impactor").unwrap();
+        format!("{}    contact: surface\n{}", &s[..start], &s[end..])
+    };
+    let e = error_for(|s| format!("{s}geometry: round\n"));
+    assert_mentions(
+        &e,
+        &[
+            "bad.yaml:",
+            "geometry",
+            "round",
+            "plane-strain",
+            "axisymmetric",
+        ],
+    );
+    let e = error_for(|s| format!("{s}geometry: axisymmetric\n"));
+    assert_mentions(&e, &["bad.yaml:23:11", "geometry", "contact: surface"]);
+    let e = error_for(|s| {
+        format!(
+            "{}geometry: axisymmetric\n",
+            surface(s).replace("model: half", "model: full")
+        )
+    });
+    assert_mentions(&e, &["geometry", "axisymmetric", "mesh.model: half"]);
+    let e = error_for(|s| format!("{}geometry: axisymmetric\nkinematics: finite\n", surface(s)));
+    assert_mentions(&e, &["geometry", "kinematics: small"]);
+    let e = error_for(|s| {
+        let global = surface(s).replace("{cfl: 0.8}", "{cfl: 0.8, estimate: global}");
+        format!("{global}geometry: axisymmetric\n")
+    });
+    assert_mentions(&e, &["geometry", "estimate: element"]);
+    let ok = Scene::from_yaml(
+        &format!("{}geometry: axisymmetric\n", surface(EXAMPLE)),
+        Path::new("round.yaml"),
+    );
+    assert_eq!(
+        ok.unwrap().geometry,
+        impact_solver::input::geometry::Geometry::Axisymmetric
+    );
+}
+
 fn scratch(name: &str) -> PathBuf {
     let dir =
         std::env::temp_dir().join(format!("impact-scene-errors-{}-{name}", std::process::id()));

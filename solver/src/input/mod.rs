@@ -6,6 +6,7 @@
 
 pub mod budget;
 pub mod error;
+pub mod geometry;
 pub mod overrides;
 pub mod plausibility;
 pub mod rate_law;

@@ -13,6 +13,7 @@ use serde::Deserialize;
 use serde_saphyr::Spanned;
 
 use crate::input::error::{shown, Error, Result, SourceLocation};
+use crate::input::geometry::{self, Geometry};
 use crate::input::overrides::Overrides;
 use crate::input::plausibility::Warning;
 use crate::input::rate_law::{RateFile, RateLaw};
@@ -38,6 +39,9 @@ pub struct SceneFile {
     /// `small` (default: the paper's model) or `finite`.
     #[serde(default)]
     pub kinematics: Kinematics,
+    /// `plane-strain` (default: the paper's model) or `axisymmetric`.
+    #[serde(default)]
+    pub geometry: Option<Spanned<Geometry>>,
 }
 
 /// How the plate deforms: small strains and rotations (the paper's model, eqs. 13-16), or
@@ -526,6 +530,7 @@ pub struct Scene {
     /// [`crate::input::plausibility::warnings`] finds them.
     pub warnings: Vec<Warning>,
     pub kinematics: Kinematics,
+    pub geometry: Geometry,
 }
 
 /// Plate dimensions (m) and end supports.
@@ -971,6 +976,13 @@ impl<'a> Validator<'a> {
         let load = self.load(file.load, &plate)?;
         let time = self.time(&file.time)?;
         let output = self.output(&file.output, &plate)?;
+        let choices = geometry::Choices {
+            model: mesh.model,
+            kinematics: file.kinematics,
+            load: &load,
+            estimate: time.dt_estimate,
+        };
+        let geometry = geometry::validated(file.geometry.as_ref(), self.source, choices)?;
         Ok(Scene {
             source: self.source.to_path_buf(),
             title: file.title,
@@ -983,6 +995,7 @@ impl<'a> Validator<'a> {
             fields: self.spans.take(),
             warnings: Vec::new(),
             kinematics: file.kinematics,
+            geometry,
         })
     }
 

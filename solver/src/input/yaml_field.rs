@@ -501,6 +501,7 @@ const OTHER_KINDS: &str = "one key naming the kind, with its settings";
 fn words(leaf: &str) -> Option<&'static str> {
     Some(match leaf {
         "kinematics" => "`small` or `finite`",
+        "geometry" => "`plane-strain` or `axisymmetric`",
         "model" => "`half` or `full`",
         "ends" => "`clamped`, `roller` or `slider`",
         "indentation_datum" | "force_node" => "`mid-plane` or `top-surface`",

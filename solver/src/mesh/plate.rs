@@ -1,7 +1,8 @@
 //! Structured quadrilateral mesh of the plate (half or full), its boundary conditions, the
 //! mid-span nodes and the lookup of probe points.
 
-use crate::input::scene::{Ends, MeshSettings, MidSpanNode, Model, Plate};
+use crate::input::geometry::Geometry;
+use crate::input::scene::{Ends, MeshSettings, MidSpanNode, Model, Plate, Scene};
 
 /// Nodes and 4-node elements (counter-clockwise). Coordinates in m.
 #[derive(Debug, Clone, PartialEq)]
@@ -128,6 +129,23 @@ impl PlateMesh {
             model: settings.model,
             length: plate.length,
         }
+    }
+
+    /// The mesh of `scene`'s plate ([`PlateMesh::new`]) in its geometry: in the axisymmetric
+    /// one the modelled half-section stands for the whole round plate (its ring), so its
+    /// results are not doubled (`symmetry_factor` 1).
+    pub fn of_scene(scene: &Scene) -> PlateMesh {
+        let mut mesh = PlateMesh::new(&scene.plate, &scene.mesh);
+        if scene.geometry == Geometry::Axisymmetric {
+            mesh.symmetry_factor = 1.0;
+        }
+        mesh
+    }
+
+    /// The x coordinate of the mid-span line (the half model's symmetry line, the axis of the
+    /// axisymmetric geometry), m.
+    pub fn mid_span_x(&self) -> f64 {
+        self.mesh.coords[self.bottom][0]
     }
 
     pub fn mid_span_node(&self, which: MidSpanNode) -> usize {

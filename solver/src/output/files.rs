@@ -298,7 +298,7 @@ fn run_into(
 ) -> Result<Outcome> {
     let _ = fs::remove_dir_all(staging);
     fs::create_dir_all(staging).map_err(|e| Error::write(staging, e))?;
-    let mesh = crate::mesh::PlateMesh::new(&scene.plate, &scene.mesh);
+    let mesh = crate::mesh::PlateMesh::of_scene(scene);
     let fields_dir = scene.output.fields_every.map(|_| staging.join("fields"));
     if let Some(dir) = &fields_dir {
         fs::create_dir_all(dir).map_err(|e| Error::write(dir, e))?;

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::input::geometry::Geometry;
 use crate::input::scene::{
     ContactLawChoice, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model, Scene,
 };
@@ -68,6 +69,9 @@ pub struct Summary {
     /// Written for finite deformation only, so that small-strain summaries keep their bits.
     #[serde(skip_serializing_if = "Kinematics::is_small")]
     pub kinematics: Kinematics,
+    /// Written for the axisymmetric geometry only (the same reason).
+    #[serde(skip_serializing_if = "Geometry::is_plane_strain")]
+    pub geometry: Geometry,
     pub model: Model,
     pub plastic: bool,
     /// e.g. `paper(length_unit=0.001 m)`, `johnson(datum_depth=0.01 m)`, `pulse`.
@@ -167,6 +171,7 @@ impl Summary {
             stop_reason: t.stop,
             element: scene.mesh.element,
             kinematics: scene.kinematics,
+            geometry: scene.geometry,
             model: scene.mesh.model,
             plastic: scene.is_plastic(),
             contact_law,

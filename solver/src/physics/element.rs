@@ -23,7 +23,7 @@ pub type ElementVector = [f64; 8];
 
 const G: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
 /// Natural coordinates of the 2x2 Gauss points (ordered as the nodes).
-const GAUSS_XI: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
+pub(crate) const GAUSS_XI: [[f64; 2]; 4] = [[-G, -G], [G, -G], [G, G], [-G, G]];
 
 /// Shape function values at natural coordinates.
 pub fn shape(xi: [f64; 2]) -> [f64; 4] {
@@ -175,6 +175,11 @@ pub trait Formulation: Sync + 'static {
     }
     /// Element volume (area * W), m^3.
     fn volume(&self, e: usize) -> f64;
+    /// Lumped masses of the element's four nodes for `density` (kg/m^3), kg: a quarter of
+    /// its mass each unless the formulation says otherwise (the axisymmetric row sums).
+    fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
+        [0.25 * density * self.volume(e); 4]
+    }
     /// Heap bytes of the connectivity and the geometry.
     fn heap_bytes(&self) -> usize;
     /// Internal nodal forces and energies of `at`, updating its points' material states
@@ -296,8 +301,14 @@ pub fn element_max_eigenvalue<F: Formulation>(
     e: usize,
 ) -> f64 {
     let k = element_stiffness(formulation, elastic, e);
-    let m = 0.25 * density * formulation.volume(e);
-    let a = nalgebra::SMatrix::<f64, 8, 8>::from_fn(|i, j| 0.5 * (k[i][j] + k[j][i]) / m);
+    let m = formulation.nodal_masses(e, density);
+    // sqrt(m_i m_j) is m where the two are equal (the square root of a rounded square is
+    // exact), so equal masses keep the quotient `/ m`.
+    let a = nalgebra::SMatrix::<f64, 8, 8>::from_fn(|i, j| {
+        let (mi, mj) = (m[i / 2], m[j / 2]);
+        let mass = if mi == mj { mi } else { (mi * mj).sqrt() };
+        0.5 * (k[i][j] + k[j][i]) / mass
+    });
     a.symmetric_eigenvalues().max()
 }
 
@@ -305,12 +316,12 @@ pub fn element_max_eigenvalue<F: Formulation>(
 /// The geometry is computed from these, so congruent elements (the same relative
 /// coordinates, bit for bit) have the same geometry and share it ([`SharedBatches`]), and
 /// the Jacobian sums no large absolute coordinates that cancel.
-fn shape_coords(mesh: &Mesh, e: usize) -> [[f64; 2]; 4] {
+pub(crate) fn shape_coords(mesh: &Mesh, e: usize) -> [[f64; 2]; 4] {
     let c = mesh.element_coords(e);
     c.map(|p| [p[0] - c[0][0], p[1] - c[0][1]])
 }
 
-fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
+pub(crate) fn gauss_geometry(mesh: &Mesh, e: usize) -> Result<[PointGeometry<f64>; 4]> {
     let c = shape_coords(mesh, e);
     let g = GAUSS_XI.map(|xi| PointGeometry::at(&c, xi));
     if let Some(bad) = g.iter().find(|p| !(p.det_j > 0.0)) {
@@ -559,12 +570,25 @@ impl OnePoint<f64> {
 impl OnePointQ4 {
     /// `kappa`: hourglass coefficient; `p_modulus`: lambda + 2 mu, Pa.
     pub fn new(mesh: &Mesh, width: f64, kappa: f64, p_modulus: f64) -> Result<OnePointQ4> {
+        OnePointQ4::with_thickness(mesh, |_, _| Ok(width), kappa, p_modulus)
+    }
+
+    /// [`OnePointQ4::new`] with element `e`'s out-of-plane thickness `thickness(e, area)` (m;
+    /// its area in m^2): its volume is `area * thickness` (the axisymmetric ring's: 2 pi times
+    /// the radius of its area's centroid).
+    pub(crate) fn with_thickness(
+        mesh: &Mesh,
+        thickness: impl Fn(usize, f64) -> Result<f64>,
+        kappa: f64,
+        p_modulus: f64,
+    ) -> Result<OnePointQ4> {
         let element = |e| {
             let (c, centroid, area) = centroid_geometry(mesh, e)?;
             let xy = shape_coords(mesh, e);
             let hx: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][0]).sum();
             let hy: f64 = (0..4).map(|a| HOURGLASS_H[a] * xy[a][1]).sum();
             let bb: f64 = (0..4).map(|a| c.dndx[a].powi(2) + c.dndy[a].powi(2)).sum();
+            let width = thickness(e, area)?;
             let volume = area * width;
             Ok(OnePoint {
                 centroid,
@@ -684,12 +708,13 @@ pub fn scatter_add(nodes: [u32; 4], fe: &ElementVector, f: &mut [f64]) {
     }
 }
 
-/// Lumped (row-sum) nodal masses, kg: each element gives a quarter of its mass to each node.
+/// Lumped nodal masses, kg: each element gives its [`Formulation::nodal_masses`] (a quarter
+/// of its mass to each node in plane strain).
 pub fn lumped_masses<F: Formulation>(formulation: &F, n_nodes: usize, density: f64) -> Vec<f64> {
     let mut m = vec![0.0; n_nodes];
     for e in 0..formulation.n_elements() {
-        let share = 0.25 * density * formulation.volume(e);
-        for n in formulation.nodes(e) {
+        let shares = formulation.nodal_masses(e, density);
+        for (n, share) in formulation.nodes(e).into_iter().zip(shares) {
             m[n as usize] += share;
         }
     }

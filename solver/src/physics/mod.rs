@@ -5,8 +5,10 @@
 //! reasons a solve fails in [`contact_failure`]), the rigid nose in surface contact
 //! ([`nose_contact`]), and prescribed loads ([`load`]). Finite deformation: the kinematics of a
 //! point ([`kinematics`]), the elements ([`finite_element`]) and materials ([`finite_material`])
-//! that use it.
+//! that use it. The axisymmetric geometry: the elements' hoop rows and ring weights
+//! ([`axisymmetric`]).
 
+pub mod axisymmetric;
 pub mod centroid;
 pub mod contact;
 pub mod contact_failure;

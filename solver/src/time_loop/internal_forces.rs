@@ -16,6 +16,7 @@ use std::any::Any;
 use crate::kernels::assembly::{each_element, ScatterChunk};
 use crate::kernels::batch;
 use crate::lanes::simd::{dispatch, KernelPath};
+use crate::physics::axisymmetric::Axisymmetric;
 use crate::physics::element::{
     gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
@@ -192,6 +193,15 @@ compiled! {
     finite_one_point_elastic: UpdatedLagrangian<OnePointQ4>, Finite<Elastic>;
     finite_one_point_plastic: UpdatedLagrangian<OnePointQ4>, Finite<VonMises>;
     finite_one_point_rate: UpdatedLagrangian<OnePointQ4>, Finite<ViscoPlastic>;
+    ring_full_elastic: Axisymmetric<FullQ4>, Elastic;
+    ring_full_plastic: Axisymmetric<FullQ4>, VonMises;
+    ring_full_rate: Axisymmetric<FullQ4>, ViscoPlastic;
+    ring_selective_elastic: Axisymmetric<SelectiveQ4>, Elastic;
+    ring_selective_plastic: Axisymmetric<SelectiveQ4>, VonMises;
+    ring_selective_rate: Axisymmetric<SelectiveQ4>, ViscoPlastic;
+    ring_one_point_elastic: Axisymmetric<OnePointQ4>, Elastic;
+    ring_one_point_plastic: Axisymmetric<OnePointQ4>, VonMises;
+    ring_one_point_rate: Axisymmetric<OnePointQ4>, ViscoPlastic;
 }
 
 #[cfg(test)]
@@ -259,5 +269,15 @@ mod tests {
             )
         });
         check(|| PlateModel::new(UpdatedLagrangian(one_point()), plastic(), &mesh, 7850.0));
+        let axis = mesh.mid_span_x();
+        let ring_full = || Axisymmetric::<FullQ4>::new(&mesh.mesh, axis, 0.05, p_modulus);
+        let ring_sri = || Axisymmetric::<SelectiveQ4>::new(&mesh.mesh, axis, 0.05, p_modulus);
+        let ring_1pt = || Axisymmetric::<OnePointQ4>::new(&mesh.mesh, axis, 0.05, p_modulus);
+        check(|| PlateModel::new(ring_full().unwrap(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(ring_full().unwrap(), test_von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(ring_sri().unwrap(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(ring_sri().unwrap(), test_von_mises(), &mesh, 7850.0));
+        check(|| PlateModel::new(ring_1pt().unwrap(), elastic, &mesh, 7850.0));
+        check(|| PlateModel::new(ring_1pt().unwrap(), test_von_mises(), &mesh, 7850.0));
     }
 }

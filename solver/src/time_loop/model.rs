@@ -4,9 +4,11 @@
 //! dispatch over elements alone (static checks that need no material).
 
 use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::geometry::Geometry;
 use crate::input::scene::{ElementKind, Kinematics, Scene};
 use crate::lanes::simd::KernelPath;
 use crate::mesh::{Mesh, PlateMesh};
+use crate::physics::axisymmetric::Axisymmetric;
 use crate::physics::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
 use crate::physics::finite_element::{FiniteResponse, UpdatedLagrangian};
 use crate::physics::finite_material::Finite;
@@ -111,6 +113,9 @@ pub fn build_on<U: UseModel>(
 ) -> Result<U::Output> {
     let m = &scene.material;
     let elastic = Elastic::new(m.youngs_modulus, m.poisson_ratio);
+    if scene.geometry == Geometry::Axisymmetric {
+        return with_ring(scene, mesh, kernel, path, user);
+    }
     let formulation = AnyFormulation::new(
         scene.mesh.element,
         &mesh.mesh,
@@ -140,6 +145,51 @@ pub fn build_on<U: UseModel>(
     }
 }
 
+/// [`build_on`] in the axisymmetric geometry (small strain: the scene refuses it with finite
+/// deformation), about the mid-span line.
+fn with_ring<U: UseModel>(
+    scene: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    path: KernelPath,
+    user: U,
+) -> Result<U::Output> {
+    if kernel == Kernel::ElasticStiffnessMatrix {
+        return Err(Error::invalid(
+            SourceLocation::file(&scene.source),
+            "geometry",
+            "axisymmetric",
+            "the stiffness-matrix kernel drops rigid translations, and a ring's radial translation strains it: use the stress path",
+        ));
+    }
+    let m = &scene.material;
+    let p_modulus = Elastic::new(m.youngs_modulus, m.poisson_ratio).p_modulus();
+    let (axis, hourglass) = (mesh.mid_span_x(), scene.mesh.hourglass);
+    let request = Request {
+        scene,
+        mesh,
+        kernel,
+        path,
+    };
+    match scene.mesh.element {
+        ElementKind::Q4Full => with_material(
+            Axisymmetric::<FullQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
+            request,
+            user,
+        ),
+        ElementKind::Q4Sri => with_material(
+            Axisymmetric::<SelectiveQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
+            request,
+            user,
+        ),
+        ElementKind::Q4OnePoint => with_material(
+            Axisymmetric::<OnePointQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
+            request,
+            user,
+        ),
+    }
+}
+
 /// The material model a formulation runs with: the model itself in small strain, the model
 /// with a kinematic memory ([`Finite`]) under finite deformation.
 pub trait MaterialOf: Formulation {
@@ -157,7 +207,14 @@ macro_rules! small_strain_material {
         }
     )*};
 }
-small_strain_material!(FullQ4, SelectiveQ4, OnePointQ4);
+small_strain_material!(
+    FullQ4,
+    SelectiveQ4,
+    OnePointQ4,
+    Axisymmetric<FullQ4>,
+    Axisymmetric<SelectiveQ4>,
+    Axisymmetric<OnePointQ4>
+);
 
 impl<F: FiniteResponse> MaterialOf for UpdatedLagrangian<F> {
     type Material<M: ConstitutiveModel> = Finite<M>;

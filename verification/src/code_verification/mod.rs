@@ -3,6 +3,7 @@
 //! update against a fixed linear spring. Each returns metrics for the checks and a small
 //! history ("orders") for the report's order plots.
 
+pub mod axisymmetric;
 pub mod bar_wave;
 pub mod bending_period;
 pub mod collapse;
@@ -31,7 +32,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 18] = [
+pub const NAMES: [&str; 19] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -50,6 +51,7 @@ pub const NAMES: [&str; 18] = [
     "viscoplastic-truss",
     "finite-strain-path",
     "membrane-regime",
+    "axisymmetric",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -73,6 +75,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
         "finite-strain-path" => finite_path::finite_strain_path(p),
         "membrane-regime" => membrane::membrane_regime(p),
+        "axisymmetric" => axisymmetric::axisymmetric(p),
         _ => return None,
     })
 }

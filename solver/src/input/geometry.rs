@@ -1,0 +1,85 @@
+//! `geometry: plane-strain | axisymmetric`: what the modelled section stands for, and the
+//! scenes the axisymmetric geometry cannot run (refused with the field, the value and the
+//! way out).
+//!
+//! In the axisymmetric geometry the half model's section is a diametral half-section of a
+//! round plate: its clamped end `x = 0` is the rim, its symmetry line `x = length / 2` the
+//! axis, so the plate's radius is `length / 2` and a point's radius is `r = length / 2 - x`
+//! (`ALGORITHM.md` section 3d). Forces, masses and energies are those of the whole ring (N, kg,
+//! J over 2 pi rad), as Abaqus reports them; `plate.width` is not used.
+
+use serde::Deserialize;
+
+use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::scene::{Estimate, Kinematics, Load, Model};
+use serde_saphyr::Spanned;
+
+/// The section modelled: a slice of a plate of width `plate.width` (plane strain, the paper's
+/// model), or the half-section of a round plate whose axis is the mid-span line.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Geometry {
+    #[default]
+    PlaneStrain,
+    Axisymmetric,
+}
+
+impl Geometry {
+    /// The name in scenes and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            Geometry::PlaneStrain => "plane-strain",
+            Geometry::Axisymmetric => "axisymmetric",
+        }
+    }
+
+    pub fn is_plane_strain(&self) -> bool {
+        *self == Geometry::PlaneStrain
+    }
+}
+
+/// The scene's parts the geometry must agree with.
+pub struct Choices<'a> {
+    pub model: Model,
+    pub kinematics: Kinematics,
+    pub load: &'a Load,
+    pub estimate: Estimate,
+}
+
+/// The geometry of `written` (absent: plane strain), or the error naming what the
+/// axisymmetric geometry cannot run with (`source`: the scene file).
+pub fn validated(
+    written: Option<&Spanned<Geometry>>,
+    source: &std::path::Path,
+    choices: Choices,
+) -> Result<Geometry> {
+    let Some(spanned) = written else {
+        return Ok(Geometry::PlaneStrain);
+    };
+    let geometry = spanned.value;
+    if geometry == Geometry::PlaneStrain {
+        return Ok(geometry);
+    }
+    let refuse = |allowed: &str| {
+        Err(Error::invalid(
+            SourceLocation::of(source, spanned),
+            "geometry",
+            geometry.name(),
+            allowed,
+        ))
+    };
+    if choices.model != Model::Half {
+        return refuse("axisymmetric needs mesh.model: half (the half-section from the clamped rim at x = 0 to the axis at x = length / 2)");
+    }
+    if choices.kinematics != Kinematics::Small {
+        return refuse("axisymmetric runs with kinematics: small; finite deformation is plane-strain only for now");
+    }
+    if choices.estimate == Estimate::Global {
+        return refuse("axisymmetric runs with time.dt.estimate: element (the global estimate's stiffness products drop rigid translations, and a radial translation of a ring is not rigid)");
+    }
+    match choices.load {
+        Load::Impactor(_) => refuse("axisymmetric needs load.impactor.contact: surface (the nodal coupling's contact law is the plane-strain line law; the surface coupling's nose, revolved, is a sphere)"),
+        Load::Traction(_) => refuse("axisymmetric runs an impactor with contact: surface or a pulse on the axis; a traction load is plane-strain only for now"),
+        Load::SurfaceImpactor(_) | Load::Pulse(_) => Ok(geometry),
+    }
+}
