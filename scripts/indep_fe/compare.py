@@ -141,6 +141,10 @@ def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, f
     ka, kb = sa.get("kinematics", "small"), sb.get("kinematics", "small")
     if ka != kb:
         problems.append(f"kinematics differs: {ka} vs {kb}")
+    # section 3d: and the geometry of axisymmetric runs only (absent: plane-strain)
+    ga, gb = sa.get("geometry", "plane-strain"), sb.get("geometry", "plane-strain")
+    if ga != gb:
+        problems.append(f"geometry differs: {ga} vs {gb}")
     for k in SUMMARY_EXACT:
         if k in sa and k in sb:
             r = rel(sa[k], sb[k])

@@ -59,7 +59,7 @@ def kinematics(pm: PlateMesh) -> Kinematics:
     return Kinematics(dNdx, dNdy, detJw, gp_xy, bx, by, detJw.sum(axis=1), centroid)
 
 
-def _b_standard(dndx: np.ndarray, dndy: np.ndarray) -> np.ndarray:
+def b_standard(dndx: np.ndarray, dndy: np.ndarray) -> np.ndarray:
     """(..., 4 nodes) derivatives -> (..., 4 strains, 8 dofs) standard plane-strain B."""
     shape = dndx.shape[:-1]
     B = np.zeros(shape + (4, 8))
@@ -87,9 +87,9 @@ class Formulation:
 def formulation(name: str, pm: PlateMesh, kin: Kinematics, width: float,
                 lam: float, mu: float, kappa: float) -> Formulation:
     if name == "q4-full":
-        return Formulation(name, _b_standard(kin.dNdx, kin.dNdy), kin.detJw * width, kin.gp_xy)
+        return Formulation(name, b_standard(kin.dNdx, kin.dNdy), kin.detJw * width, kin.gp_xy)
     if name == "q4-sri":
-        B = _b_standard(kin.dNdx, kin.dNdy)
+        B = b_standard(kin.dNdx, kin.dNdy)
         # B-bar: eps_bar = eps + shift (1, 1, 1, 0), shift = (e_c - e)/3
         dvol = np.zeros(B.shape[:2] + (8,))
         dvol[..., 0::2] = kin.bx[:, None, :] - kin.dNdx
@@ -98,7 +98,7 @@ def formulation(name: str, pm: PlateMesh, kin: Kinematics, width: float,
             B[..., c, :] += dvol / 3.0
         return Formulation(name, B, kin.detJw * width, kin.gp_xy)
     if name == "q4-1pt":
-        B = _b_standard(kin.bx, kin.by)[:, None]                      # (nel, 1, 4, 8)
+        B = b_standard(kin.bx, kin.by)[:, None]                      # (nel, 1, 4, 8)
         w = (kin.area * width)[:, None]
         x = pm.coords[pm.conn, 0]                                      # (nel, 4)
         y = pm.coords[pm.conn, 1]

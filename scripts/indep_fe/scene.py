@@ -139,9 +139,11 @@ class Scene:
     time: TimeSpec
     output: Output
     kinematics: str = "small"    # small (sections 2-3) | finite (section 3c)
+    geometry: str = "plane-strain"  # plane-strain (sections 1-2) | axisymmetric (section 3d)
 
 
 KINEMATICS = ("small", "finite")
+GEOMETRIES = ("plane-strain", "axisymmetric")
 
 
 def _refuse_unknown(d: dict, known: set[str], where: str) -> None:
@@ -461,7 +463,7 @@ def parse_scene(data: dict) -> Scene:
     if not isinstance(data, dict):
         raise SceneError("scene must be a YAML mapping")
     _refuse_unknown(data, {"plate", "material", "mesh", "load", "time", "output", "title",
-                           "kinematics"}, "scene")
+                           "kinematics", "geometry"}, "scene")
     kinematics = str(data.get("kinematics", "small"))
     if kinematics not in KINEMATICS:
         raise SceneError(f"kinematics must be small | finite, got {kinematics!r}")
@@ -471,7 +473,23 @@ def parse_scene(data: dict) -> Scene:
     impactor, pulse = _parse_load(data)
     ts = _parse_time(data)
     output = _parse_output(data, plate)
-    return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics)
+    geometry = str(data.get("geometry", "plane-strain"))
+    if geometry not in GEOMETRIES:
+        raise SceneError(f"geometry must be plane-strain | axisymmetric, got {geometry!r}")
+    if geometry == "axisymmetric":
+        _check_axisymmetric(mesh, impactor, kinematics)
+    return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry)
+
+
+def _check_axisymmetric(mesh: MeshSpec, impactor: Impactor | None, kinematics: str) -> None:
+    """Section 3d's domain: the half model, small kinematics, a pulse or the surface nose
+    (time.dt.estimate: global, also refused there, is refused for every scene here)."""
+    if mesh.model != "half":
+        raise SceneError(f"geometry: axisymmetric needs mesh.model: half, got {mesh.model!r}")
+    if kinematics != "small":
+        raise SceneError("geometry: axisymmetric needs kinematics: small")
+    if impactor is not None and impactor.coupling != "surface":
+        raise SceneError("geometry: axisymmetric needs load.impactor.contact: surface")
 
 
 def load_scene(path: str | Path) -> Scene:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 import sys
@@ -12,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from .contact import make_law
+from .axisymmetric import Ring, ring_eigenvalues, ring_formulation, ring_node_masses
 from .elements import (elastic_matrix, element_eigenvalues, formulation, global_operators,
                        kinematics, lumped_mass)
 from .finite import CHECK_EVERY, FiniteKinematics, inverted_element
@@ -110,11 +112,20 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
     pm = build_mesh(plate, ms)
     kin = kinematics(pm)
     lam, mu = lame(mat.youngs_modulus, mat.poisson_ratio)
-    form = formulation(ms.element, pm, kin, W, lam, mu, ms.hourglass)
     D = elastic_matrix(lam, mu)
-    lam_e = element_eigenvalues(form, D, kin, mat.density, W)
+    if scene.geometry == "axisymmetric":
+        # section 3d: the whole ring, symmetry factor 1, plate.width unused
+        pm = dataclasses.replace(pm, symmetry=1.0)
+        ring = Ring(pm, kin)
+        form = ring_formulation(ms.element, pm, kin, ring, lam, mu, ms.hourglass)
+        m_e = ring.node_masses(mat.density)
+        lam_e = ring_eigenvalues(form, D, m_e)
+        m_node = ring_node_masses(pm, m_e)
+    else:
+        form = formulation(ms.element, pm, kin, W, lam, mu, ms.hourglass)
+        lam_e = element_eigenvalues(form, D, kin, mat.density, W)
+        m_node = lumped_mass(pm, kin, mat.density, W)
     dt_plate = 2.0 / np.sqrt(lam_e.max())
-    m_node = lumped_mass(pm, kin, mat.density, W)
     ndof = 2 * pm.n_nodes
     m_dof = np.repeat(m_node, 2)
     free = np.ones(ndof, bool)
@@ -331,6 +342,7 @@ def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
         "n_nodes": pl.pm.n_nodes,
         "element": scene.mesh.element,
         **({"kinematics": "finite"} if pl.finite is not None else {}),
+        **({"geometry": "axisymmetric"} if scene.geometry == "axisymmetric" else {}),
         "model": scene.mesh.model,
         "contact_law": law.description if law is not None else None,
         "final_plastic_work_J": pl.s * totals["plastic_work"],

@@ -29,6 +29,9 @@ def static_deflection(scene: Scene) -> dict:
         raise SceneError("static: the scene needs a pulse load")
     if scene.material.plasticity is not None:
         raise SceneError("static: linear elastic scenes only (no plasticity block)")
+    if scene.geometry != "plane-strain":
+        raise SceneError("static: plane-strain scenes only (geometry: axisymmetric, section 3d, "
+                         "is implemented by the time loop, not by this solve)")
     plate, mat, ms = scene.plate, scene.material, scene.mesh
     pm = build_mesh(plate, ms)
     lam, mu = lame(mat.youngs_modulus, mat.poisson_ratio)

@@ -4,30 +4,14 @@ import scipy.sparse as sp
 from skfem import Basis, ElementQuad1, ElementVector, asm
 from skfem.models.elasticity import linear_elasticity
 
-from helpers import scene
+from helpers import plate_mesh as setup, scene
 from indep_fe.elements import (GAUSS_2X2, critical_dt, elastic_matrix, element_dofs,
-                               element_stiffness, formulation, global_operators, kinematics,
+                               element_stiffness, formulation, global_operators,
                                lumped_mass)
 from indep_fe.material import MaterialModel, lame
-from indep_fe.mesh import PlateMesh, build_mesh, find_element
+from indep_fe.mesh import build_mesh, find_element
 
 ELEMENTS = ["q4-full", "q4-sri", "q4-1pt"]
-
-
-def setup(sc, distort=0.0):
-    pm = build_mesh(sc.plate, sc.mesh)
-    if distort:
-        # move interior nodes randomly: a general (non-rectangular) quad mesh
-        from skfem import MeshQuad
-        rng = np.random.default_rng(1)
-        c = pm.coords.copy()
-        nx, ny = pm.nx, pm.ny
-        h = min(np.diff(pm.xs).min(), np.diff(pm.ys).min())
-        interior = [i + j * (nx + 1) for j in range(1, ny) for i in range(1, nx)]
-        c[interior] += distort * h * rng.uniform(-1, 1, (len(interior), 2))
-        pm = PlateMesh(pm.nx, pm.ny, pm.xs, pm.ys, MeshQuad(c.T.copy(), pm.conn.T.copy()), c,
-                       pm.conn, pm.fixed_dofs, pm.top, pm.mid, pm.bottom, pm.symmetry)
-    return pm, kinematics(pm)
 
 
 def test_numbering_and_midspan_nodes():
