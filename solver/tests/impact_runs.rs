@@ -308,14 +308,14 @@ fn a_run_that_falls_back_to_one_thread_keeps_the_one_thread_bits() {
     let mut scene = small(PLASTIC);
     scene.mesh.nx = 128;
     scene.mesh.ny = 32;
-    scene.time.end = End::At(3.5e-4);
+    scene.time.end = End::At(4e-4);
     let on = |threads: usize, policy: Policy| {
         impact_solver::workers::with_threads(threads, || with_policy(policy, || run(&scene)))
     };
     let (one, fell_back) = (on(1, Policy::Measure), on(2, Policy::Always));
-    // Steps past block 11, the first try of the team after the fallback (blocks 3-10 alone).
+    // Steps past block 12, the first try of the team after the fallback (blocks 4-11 alone).
     let steps = one.summary.n_steps;
-    assert!(steps > u64::from(12 * BLOCK), "{steps} steps");
+    assert!(steps > u64::from(13 * BLOCK), "{steps} steps");
     assert_eq!(one.summary.threads_fallback, None);
     let report = fell_back.summary.threads_fallback.expect("fell back");
     assert_eq!(report.threads, 2);

@@ -630,9 +630,9 @@ mod tests {
 
     #[test]
     fn a_team_that_falls_back_and_returns_keeps_the_one_thread_bits_at_every_pass() {
-        // Policy::Always: blocks 0-1 on the team, 2 a probe alone, 3-10 fallen back, 11 a
-        // try on the team, 12.. alone: every kind of pass and both switches.
-        let passes = 13 * fallback::BLOCK;
+        // Policy::Always: block 0 alone (the reference), 1-2 on the team, 3 a probe alone,
+        // 4-11 fallen back, 12 a try on the team, 13 alone: every kind of pass, both switches.
+        let passes = 14 * fallback::BLOCK;
         let (one, one_states, none) = passes_under(fallback::Policy::Always, 1, passes);
         assert_eq!(none, None, "one thread has no team to fall back from");
         for threads in 2..=3 {

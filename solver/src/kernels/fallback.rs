@@ -5,13 +5,16 @@
 //! leader hands it a part, and the leader then waits a scheduler slice for it: measured on
 //! the paper's plastic scene, 1.27-1.41 s on two threads against 0.48-0.83 s on one. So the
 //! team measures itself against one thread: the steps go in blocks of [`BLOCK`] element-loop
-//! passes (one per time step), each block timed as a whole (one clock reading per block, from
-//! the start of its first pass to the start of the next block's: the whole steps, the
-//! leader's serial work included). Now and then one block runs alone (a probe) and is
-//! compared with the team block before it; when alone was faster the loop falls back to one
-//! thread, and tries the team again after a back-off (a probe block on the team compared
-//! with the alone block before it), because a machine's load comes and goes (another
-//! program's compilation ends) and a long run should not lose the team's gain for good.
+//! passes (one per time step), each timed from the start of its first pass to the start of
+//! the next block's (the whole steps, the leader's serial work included). The run's first
+//! block runs alone (the reference); after two team blocks, and then now and then, one block
+//! runs alone (a probe) and is compared with the team block before it, per pass. When alone
+//! was faster the loop falls back to one thread, and tries the team again after a back-off
+//! (a block on the team compared with the alone block before it), because a machine's load
+//! comes and goes (another program's compilation ends) and a long run should not lose the
+//! team's gain for good. A team block is cut short once it has taken longer than the last
+//! alone block took whole: a try under load costs at most that, and a load that starts
+//! mid-run is seen within a block (a probe follows at once).
 //!
 //! The parts of a job are the same whoever runs them: alone, the calling thread runs the
 //! team's parts one after another ([`crate::kernels::assembly`]), so a switch changes only who
@@ -26,21 +29,21 @@ use std::time::Instant;
 /// moments a worker is off its core (a shorter block is decided by one preemption).
 pub const BLOCK: u32 = 128;
 
-/// Team blocks before the first probe: the first block starts the workers and warms their
-/// caches, and is not compared.
+/// Team blocks after the first (alone: the reference) before the first probe.
 const FIRST_PROBE_AFTER: u32 = 2;
 
 /// Team blocks between probes after the first: doubling from this while the team keeps
 /// winning, up to [`TEAM_INTERVAL_MAX`]. Idle, a probe costs a block at the one-thread speed
-/// (1.35x slower on the paper scene): probes at blocks 2, 5, 10, 19, 36, 69, 134 of the
-/// 173-block run cost ~1.5 % of the team's time.
+/// (1.35x slower on the paper scene): the reference and the probes at blocks 3, 6, 11, 20,
+/// 37, 70, 135 of the 173-block run cost ~1.6 % of the team's time.
 const TEAM_INTERVAL_FIRST: u32 = 2;
 const TEAM_INTERVAL_MAX: u32 = 64;
 
 /// Alone blocks before the team is tried again after a fallback: doubling from this after
-/// every try the team loses, up to [`RETRY_INTERVAL_MAX`]. Loaded, a try costs a block at
-/// the team's loaded speed (~2-3x slower than alone): tries after 8, 16, 32 and 64 blocks,
-/// plus the team's first blocks, cost ~5 % of the paper run; later ones ~1 %.
+/// every try the team loses, up to [`RETRY_INTERVAL_MAX`]. Loaded, a try costs at most one
+/// alone block's time (the try is cut short once it has taken that long, see
+/// [`Fallback::team_now`]): tries after 8, 16, 32 and 64 blocks and the first team block cost
+/// at most ~3 % of the paper run.
 const RETRY_INTERVAL_FIRST: u32 = 8;
 const RETRY_INTERVAL_MAX: u32 = 128;
 
@@ -134,6 +137,8 @@ impl Report {
 /// Where the schedule is.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Phase {
+    /// The run's first block, alone: the reference the team's first blocks are held to.
+    Reference,
     /// On the team; a probe after `left` more blocks, the next interval `interval`.
     Team { left: u32, interval: u32 },
     /// A probe block alone; on the team again after it, `interval` blocks to the next probe.
@@ -156,12 +161,12 @@ pub struct Fallback {
     policy: Policy,
     threads: usize,
     phase: Phase,
-    /// Passes into the current block.
+    /// Passes into the current block, and when it started.
     in_block: u32,
     block_started: Option<Instant>,
-    /// The last whole block's time on the team and alone, s.
-    last_team_s: Option<f64>,
-    last_alone_s: Option<f64>,
+    /// The last block's wall time per pass on the team and alone, s.
+    team_rate: Option<f64>,
+    alone_rate: Option<f64>,
     report: Option<Report>,
 }
 
@@ -171,32 +176,40 @@ impl Fallback {
         Fallback {
             policy,
             threads,
-            phase: Phase::Team {
-                left: FIRST_PROBE_AFTER,
-                interval: TEAM_INTERVAL_FIRST,
-            },
+            phase: Phase::Reference,
             in_block: 0,
             block_started: None,
-            last_team_s: None,
-            last_alone_s: None,
+            team_rate: None,
+            alone_rate: None,
             report: None,
         }
     }
 
     /// Called at the start of every element-loop pass: whether this pass runs on the team.
-    /// Reads the clock once per [`BLOCK`] passes; allocates nothing.
+    /// Reads the clock at every pass on the team (~25 ns against a step's ~20 us), once per
+    /// block alone; allocates nothing. A team block is cut short as soon as it has taken
+    /// longer than the last alone block took for all its passes (under [`Policy::Measure`]):
+    /// on a busy machine a team step can take a scheduler slice (1 ms against 60 us alone,
+    /// measured), and a whole block of them would cost more than the fallback saves.
     pub fn team_now(&mut self) -> bool {
         if self.policy == Policy::Never {
             return true;
         }
-        if self.in_block == 0 {
+        let on_team = self.phase.on_team();
+        let started = *self.block_started.get_or_insert_with(Instant::now);
+        if self.in_block == BLOCK || (on_team && self.in_block > 0) {
             let now = Instant::now();
-            if let Some(started) = self.block_started {
-                self.block_done((now - started).as_secs_f64());
+            let elapsed = (now - started).as_secs_f64();
+            let budget = self.alone_rate.map(|a| a * f64::from(BLOCK));
+            let overran =
+                on_team && self.policy == Policy::Measure && budget.is_some_and(|b| elapsed > b);
+            if self.in_block == BLOCK || overran {
+                self.block_done(elapsed / f64::from(self.in_block), overran);
+                self.in_block = 0;
+                self.block_started = Some(now);
             }
-            self.block_started = Some(now);
         }
-        self.in_block = (self.in_block + 1) % BLOCK;
+        self.in_block += 1;
         if let (Phase::Alone { .. }, Some(r)) = (self.phase, &mut self.report) {
             r.steps_on_one_thread += 1;
         }
@@ -208,19 +221,26 @@ impl Fallback {
         self.report
     }
 
-    /// The block that just ended took `seconds`: the next block's phase.
-    fn block_done(&mut self, seconds: f64) {
+    /// The block that just ended took `rate` s per pass (`overran`: a team block cut short):
+    /// the next block's phase.
+    fn block_done(&mut self, rate: f64, overran: bool) {
         if self.phase.on_team() {
-            self.last_team_s = Some(seconds);
+            self.team_rate = Some(rate);
         } else {
-            self.last_alone_s = Some(seconds);
+            self.alone_rate = Some(rate);
         }
-        let alone_faster = match (self.policy, self.last_alone_s, self.last_team_s) {
+        let alone_faster = match (self.policy, self.alone_rate, self.team_rate) {
             (Policy::Always, _, _) => true,
             (_, Some(alone), Some(team)) => alone < team,
             _ => false,
         };
         self.phase = match self.phase {
+            Phase::Reference => Phase::Team {
+                left: FIRST_PROBE_AFTER,
+                interval: TEAM_INTERVAL_FIRST,
+            },
+            // Slower than the last alone block: probe now (the reference may be old).
+            Phase::Team { interval, .. } if overran => Phase::ProbeAlone { interval },
             Phase::Team { left, interval } if left > 1 => Phase::Team {
                 left: left - 1,
                 interval,
@@ -236,7 +256,7 @@ impl Fallback {
                 interval,
             },
             Phase::Alone { interval, .. } => Phase::ProbeTeam { interval },
-            Phase::ProbeTeam { interval } if alone_faster => Phase::Alone {
+            Phase::ProbeTeam { interval } if overran || alone_faster => Phase::Alone {
                 left: interval,
                 interval: (2 * interval).min(RETRY_INTERVAL_MAX),
             },
@@ -249,13 +269,12 @@ impl Fallback {
 
     /// Falls back after a probe found one thread faster: records the comparison.
     fn fall_back(&mut self) -> Phase {
-        let per_step = |s: Option<f64>| s.unwrap_or(f64::NAN) / f64::from(BLOCK);
         let steps = self.report.map_or(0, |r| r.steps_on_one_thread);
         self.report = Some(Report {
             threads: self.threads,
             steps_on_one_thread: steps,
-            team_step_s: per_step(self.last_team_s),
-            one_thread_step_s: per_step(self.last_alone_s),
+            team_step_s: self.team_rate.unwrap_or(0.0),
+            one_thread_step_s: self.alone_rate.unwrap_or(0.0),
         });
         Phase::Alone {
             left: RETRY_INTERVAL_FIRST,
@@ -266,30 +285,32 @@ impl Fallback {
 
 #[cfg(test)]
 mod tests {
-    //! The schedule against hand-made block times (the clock stands aside: `block_done` is
-    //! fed directly): a team that wins every probe stays on, a team that loses falls back
-    //! and is tried again on the back-off schedule, and returns when it wins again. Wrong
-    //! models these fail: the team kept whatever it measures (today's spinning team: the
-    //! loaded test sees every block on the team), the comparison the wrong way round (the
-    //! idle test falls back at block 2), no retry (the load-goes test stays alone), retries
-    //! without back-off (the loaded test sees a try every 9 blocks).
+    //! The schedule against hand-made block rates (the clock stands aside: `block_done` is
+    //! fed directly, a team block marked overrun as `team_now` would cut it): a team that
+    //! wins every probe stays on, a team that loses falls back and is tried again on the
+    //! back-off schedule, and returns when it wins again. Wrong models these fail: the team
+    //! kept whatever it measures (today's spinning team: the loaded test sees every block on
+    //! the team), the comparison the wrong way round (the idle test falls back at block 3),
+    //! no retry (the load-goes test stays alone), retries without back-off (the loaded test
+    //! sees a try every 9 blocks).
     use super::*;
 
-    /// Runs `blocks` blocks whose times `time(on_team, block)` gives; the phases' team flags.
-    fn schedule(policy: Policy, blocks: u32, time: impl Fn(bool, u32) -> f64) -> Vec<bool> {
+    /// Runs `blocks` blocks whose rates `rate(on_team, block)` gives; the phases' team flags.
+    fn schedule(policy: Policy, blocks: u32, rate: impl Fn(bool, u32) -> f64) -> Vec<bool> {
         let mut f = Fallback::new(2, policy);
         (0..blocks)
             .map(|b| {
                 let team = f.phase.on_team();
-                f.block_done(time(team, b));
+                let r = rate(team, b);
+                let overran = team && policy == Policy::Measure && f.alone_rate < Some(r);
+                f.block_done(r, overran);
                 team
             })
             .collect()
     }
 
-    /// The blocks (indices) that ran alone.
-    fn alone(flags: &[bool]) -> Vec<usize> {
-        (0..flags.len()).filter(|&b| !flags[b]).collect()
+    fn indices(flags: &[bool], team: bool) -> Vec<usize> {
+        (0..flags.len()).filter(|&b| flags[b] == team).collect()
     }
 
     #[test]
@@ -300,27 +321,15 @@ mod tests {
             173,
             |team, _| if team { 1.0 } else { 1.35 },
         );
-        assert_eq!(alone(&flags), [2, 5, 10, 19, 36, 69, 134]);
+        assert_eq!(indices(&flags, false), [0, 3, 6, 11, 20, 37, 70, 135]);
     }
 
     #[test]
-    fn a_slower_team_falls_back_and_is_tried_again_with_back_off() {
-        // Loaded: the team 2.5x slower than one thread.
-        let mut f = Fallback::new(2, Policy::Measure);
-        let mut flags = Vec::new();
-        for _ in 0..173 {
-            let team = f.phase.on_team();
-            flags.push(team);
-            f.block_done(if team { 2.5 } else { 1.0 });
-        }
-        let on_team: Vec<usize> = (0..flags.len()).filter(|&b| flags[b]).collect();
-        // Blocks 0-1 on the team, the probe 2 alone, then tries after 8, 16, 32, 64 blocks.
-        assert_eq!(on_team, [0, 1, 11, 28, 61, 126]);
-        let r = f.report().expect("fell back");
-        assert_eq!(
-            (r.threads, r.team_step_s, r.one_thread_step_s),
-            (2, 2.5 / 128.0, 1.0 / 128.0)
-        );
+    fn a_slower_team_falls_back_at_once_and_is_tried_again_with_back_off() {
+        // Loaded: the team 2.5x slower than one thread: every team block is cut short.
+        let flags = schedule(Policy::Measure, 173, |team, _| if team { 2.5 } else { 1.0 });
+        // Block 1 overruns, 2 probes alone, then tries after 8, 16, 32, 64 blocks.
+        assert_eq!(indices(&flags, true), [1, 11, 28, 61, 126]);
     }
 
     #[test]
@@ -332,16 +341,17 @@ mod tests {
             (true, false) => 1.0,
             (false, _) => 1.35,
         });
-        let alone_blocks = alone(&flags);
         assert!(flags[11] && flags[28] && flags[29..].iter().filter(|t| !**t).count() <= 3);
-        assert_eq!(alone_blocks[..9], [2, 3, 4, 5, 6, 7, 8, 9, 10]);
+        assert_eq!(
+            indices(&flags, false)[..10],
+            [0, 2, 3, 4, 5, 6, 7, 8, 9, 10]
+        );
     }
 
     #[test]
     fn always_falls_back_and_never_stays_on_the_team() {
         let flags = schedule(Policy::Always, 173, |team, _| if team { 1.0 } else { 9.0 });
-        let on_team: Vec<usize> = (0..flags.len()).filter(|&b| flags[b]).collect();
-        assert_eq!(on_team, [0, 1, 11, 28, 61, 126]);
+        assert_eq!(indices(&flags, true), [1, 2, 12, 29, 62, 127]);
     }
 
     #[test]
@@ -354,14 +364,34 @@ mod tests {
     #[test]
     fn the_passes_of_a_fallback_are_counted() {
         let mut f = Fallback::new(2, Policy::Always);
-        let passes = 12 * BLOCK;
+        let passes = 13 * BLOCK;
         let on_team = (0..passes).filter(|_| f.team_now()).count() as u32;
-        // Blocks 0, 1 and 11 on the team, block 2 a probe alone, 3-10 fallen back.
+        // Block 0 alone (the reference), 1-2 on the team, 3 a probe alone, 4-11 fallen back,
+        // 12 a try on the team.
         assert_eq!(on_team, 3 * BLOCK);
-        assert_eq!(
-            f.report().unwrap().steps_on_one_thread,
-            u64::from(8 * BLOCK)
-        );
+        let r = f.report().unwrap();
+        assert_eq!(r.steps_on_one_thread, u64::from(8 * BLOCK));
+        assert!(r.team_step_s > 0.0 && r.one_thread_step_s > 0.0, "{r:?}");
+    }
+
+    #[test]
+    fn a_team_block_slower_than_the_alone_block_is_cut_short() {
+        // The clock itself: the alone reference block's passes sleep 1 us (~60 us measured,
+        // ~8 ms the block); team passes of 10 ms each overrun it after a pass or two, and the
+        // probe alone follows at once (a block never cut would take 128 team passes).
+        let mut f = Fallback::new(2, Policy::Measure);
+        let pass = |us: u64| std::thread::sleep(std::time::Duration::from_micros(us));
+        for _ in 0..BLOCK {
+            assert!(!f.team_now());
+            pass(1);
+        }
+        let mut team_passes = 0;
+        while f.team_now() {
+            team_passes += 1;
+            pass(10_000);
+        }
+        assert!(team_passes < BLOCK / 2, "{team_passes}");
+        assert!(matches!(f.phase, Phase::ProbeAlone { .. }), "{:?}", f.phase);
     }
 
     #[test]
