@@ -12,6 +12,7 @@ mod pareto;
 mod references;
 mod stability;
 mod table;
+mod threads;
 mod throughput;
 mod work_precision;
 
@@ -42,6 +43,10 @@ enum Command {
     Stability,
     /// All three.
     All,
+    /// The paper's plastic run on the default threads, on the team that never falls back and
+    /// on one thread, idle and with the other cores busy (spinning child processes): does the
+    /// team ever make a run slower? Not in `all` (it loads the machine on purpose).
+    Threads,
     /// The work-precision references alone, untimed, kept in --out for a later
     /// work-precision run there by this binary (the main job runs this beside the
     /// verification matrix, then the timed benchmarks alone).
@@ -74,12 +79,16 @@ fn run(cli: &Cli) -> anyhow::Result<()> {
     if let Command::References = cli.command {
         return work_precision::write_references(out, q);
     }
+    if let Command::Threads = cli.command {
+        threads::run(out, q)?;
+        return meta::record(out, "threads", q, None);
+    }
     let wp_sizes = work_precision::Sizes::new(q).describe();
     let asked = match cli.command {
         Command::WorkPrecision => Some("work-precision"),
         Command::Throughput => Some("throughput"),
         Command::Stability => Some("stability"),
-        Command::All | Command::References => None,
+        Command::All | Command::References | Command::Threads => None,
     };
     for (name, bench) in BENCHMARKS {
         if asked.is_some_and(|a| a != name) {

@@ -52,7 +52,19 @@ impl Folder<'_> {
     }
 
     fn table(&mut self, name: &str) -> Option<Table> {
-        match Table::read(&self.file(name)?) {
+        let path = self.file(name)?;
+        self.read(&path)
+    }
+
+    /// `name` when it is in the folder, not noted when it is not (a benchmark `all` does not
+    /// run: its section says how to make it).
+    fn optional_table(&mut self, name: &str) -> Option<Table> {
+        let path = self.dir.join(name);
+        path.is_file().then(|| self.read(&path)).flatten()
+    }
+
+    fn read(&mut self, path: &Path) -> Option<Table> {
+        match Table::read(path) {
             Ok(t) => Some(t),
             Err(e) => {
                 self.errors.push(e.to_string());
@@ -82,6 +94,7 @@ fn page(dir: &Path) -> String {
     let kernels = f.table("throughput-kernels.csv");
     let runs = f.table("throughput-runs.csv");
     let python = f.table("throughput-python.csv");
+    let threads = f.optional_table("threads.csv");
     for csv in ["stability-cfl.csv", "stability-extreme.csv"] {
         f.file(csv);
     }
@@ -91,6 +104,7 @@ fn page(dir: &Path) -> String {
     let body = [
         page_work_precision::section(dir, wp.as_ref(), refs.as_ref()),
         throughput(kernels.as_ref(), runs.as_ref(), python.as_ref()),
+        threads_section(threads.as_ref()),
         stability_section(stability.as_deref()),
     ]
     .concat();
@@ -189,6 +203,18 @@ fn throughput(kernels: Option<&Table>, runs: Option<&Table>, python: Option<&Tab
         if let Some(t) = t {
             let _ = write!(s, "{what}\n\n{}\n", t.markdown());
         }
+    }
+    s
+}
+
+/// The threads section: threads.csv (`impact-bench threads`), or how to make it.
+fn threads_section(threads: Option<&Table>) -> String {
+    let mut s = String::from("## Threads on a busy machine\n\nThe Table 1 elasto-plastic run (80 x 16 q4-sri, 3 ms) on one thread, on the team of threads that never falls back and on the default (the team, falling back to one thread while it is measured slower: `solver/src/kernels/fallback.rs`), interleaved, idle and with the other cores busy (spinning processes); wall times in s, the minimum and the median of the runs; target: busy, the default at most 1.1 x one thread; idle, at most 1.05 x the team without fallback");
+    match threads {
+        Some(t) => {
+            let _ = write!(s, " (threads.csv):\n\n{}\n", t.markdown());
+        }
+        None => s += ": not measured in this folder (`impact-bench threads --out DIR`, not part of `all`: it loads the machine on purpose).\n\n",
     }
     s
 }

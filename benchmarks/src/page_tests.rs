@@ -168,3 +168,23 @@ fn what_is_missing_is_said_with_its_command() {
         .any(|e| e.file_name().to_string_lossy().contains("partial")));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_threads_table_is_shown_when_measured_and_its_command_when_not() {
+    let dir = fixture("threads");
+    let md = written(&dir);
+    // `all` does not write threads.csv: the section says how to make it, nothing is "missing".
+    assert!(md.contains("## Threads on a busy machine\n"), "{md}");
+    assert!(md.contains("not measured in this folder (`impact-bench threads --out DIR`"));
+    assert!(!md.contains("Not in this folder"), "{md}");
+    std::fs::write(
+        dir.join("threads.csv"),
+        "load,load_average_1min_before,run,threads,runs,min_wall_s,median_wall_s,min_over_one_thread,runs_that_fell_back,target,status\nbusy: 1 spinning process(es),0.50,default,2,5,0.612,0.650,1.02,5,<= 1.1 x one-thread,met\n",
+    )
+    .unwrap();
+    let md = written(&dir);
+    assert!(md.contains("(threads.csv):\n\n| load |"), "{md}");
+    assert!(md.contains("| busy: 1 spinning process(es) | 0.50 | default | 2 | 5 | 0.612 |"));
+    assert!(!md.contains("not measured in this folder"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,6 +7,7 @@ use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use impact_solver::kernels::fallback;
 use impact_solver::overrides::Overrides;
 use impact_solver::{output, Outcome, Scene};
 
@@ -44,6 +45,7 @@ pub fn simulate<'py>(
         None => Overrides::new(),
     };
     let threads = threads.map(|t| thread_count(&t)).transpose()?;
+    let policy = fallback::Policy::from_env().map_err(PyValueError::new_err)?;
     let scene = Scene::from_yaml_with(text, &overrides, &source).map_err(to_py)?;
     if let Some(warn) = &warn {
         for w in &scene.warnings {
@@ -52,7 +54,7 @@ pub fn simulate<'py>(
     }
     let signals = Arc::new(PythonSignals::default());
     let outcome = py.detach(|| {
-        let run = || run(&scene, out.as_deref(), &signals);
+        let run = || fallback::with_policy(policy, || run(&scene, out.as_deref(), &signals));
         match threads {
             Some(n) => impact_solver::workers::with_threads(n, run),
             None => run(),

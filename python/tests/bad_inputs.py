@@ -39,7 +39,7 @@ SUITE = ROOT / "verification" / "bad-inputs"
 TIMEOUT_S = 20.0
 PANIC = ("panicked at", "RUST_BACKTRACE", "PanicException")
 OUTPUT_FILES = {"history.csv", "summary.json", "fields", "fields.pvd"}
-TIMING = {"wall_time_s", "setup_time_s", "loop_time_s", "ns_per_element_step"}
+TIMING = {"wall_time_s", "setup_time_s", "loop_time_s", "ns_per_element_step", "threads_fallback"}
 # Staging folders and locks a run leaves beside its --out when it is not cleaned up.
 LEFTOVER = re.compile(r"\.partial-\d+$|\.lock(-\d+-\d+)?$")
 

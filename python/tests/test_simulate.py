@@ -71,6 +71,32 @@ def test_threads_do_not_change_the_bits(small_scene):
             impact.simulate(small_scene, threads=n)
 
 
+def test_a_run_that_falls_back_to_one_thread_keeps_the_bits_and_says_so(monkeypatch):
+    """`threads=` reaches the solver's team and its fallback to one thread: forced
+    (IMPACT_THREADS_FALLBACK=always, what a busy machine measures), a 4096-element plastic run
+    on two threads falls back after its fourth block of 128 steps, tries the team after 8 more
+    and falls back again: the one-thread run's bits, and `threads_fallback` says so."""
+    from conftest import ROOT
+
+    scene = yaml.safe_load((ROOT / "verification/scenes/example-plastic.yaml").read_text())
+    scene["mesh"].update(nx=128, ny=32)
+    scene["time"]["end"] = 4e-4
+    scene["output"].pop("fields", None)
+    scene["output"]["every"] = 1e-5
+    one = impact.simulate(scene, threads=1)
+    monkeypatch.setenv("IMPACT_THREADS_FALLBACK", "always")
+    two = impact.simulate(scene, threads=2)
+    assert one.summary["n_steps"] > 13 * 128
+    assert "threads_fallback" not in one.summary
+    fallback = two.summary["threads_fallback"]
+    assert fallback["threads"] == 2 and fallback["steps_on_one_thread"] >= 8 * 128, fallback
+    assert without_timing(one.summary) == without_timing(two.summary)
+    assert_same_history(one.history, two.history)
+    monkeypatch.setenv("IMPACT_THREADS_FALLBACK", "sometimes")
+    with pytest.raises(ValueError, match='IMPACT_THREADS_FALLBACK = "sometimes": must be measure'):
+        impact.simulate(scene, threads=2)
+
+
 def test_scene_errors_carry_the_cli_message(cli, small_scene, tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(small_scene.read_text().replace("density: 7850.0", "density: -7850.0"))

@@ -173,6 +173,7 @@ impl time_loop::model::UseModel for Run<'_> {
         let timing = output::summary::Timing {
             setup_s: (setup_done - self.started).as_secs_f64(),
             loop_s: setup_done.elapsed().as_secs_f64(),
+            threads_fallback: model.assembly.threads_fallback(),
         };
         Ok(Summary::new(self.scene, self.mesh, &totals, timing))
     }

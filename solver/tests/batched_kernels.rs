@@ -249,8 +249,9 @@ fn run(scene: &Scene, path: KernelPath) -> (serde_json::Value, History) {
     let (summary, _) = simulate_on(scene, &mut Quiet, None, &mut history, path).unwrap();
     let mut json = serde_json::to_value(&summary).unwrap();
     let map = json.as_object_mut().unwrap();
-    map.retain(|k, _| !k.contains("time_s") || k.starts_with("final") || k.starts_with("dt"));
-    map.remove("ns_per_element_step");
+    for k in impact_solver::summary::TIMING_KEYS {
+        map.remove(k);
+    }
     (json, history)
 }
 

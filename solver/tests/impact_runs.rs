@@ -299,6 +299,58 @@ fn results_are_bit_identical_on_one_and_two_threads() {
     }
 }
 
+/// A run whose team falls back to one thread mid-run and tries the team again (forced:
+/// `fallback::Policy::Always`, the schedule of a busy machine) gives the one-thread run's
+/// bits, and its summary says so (`threads_fallback`, absent from the one-thread run's).
+#[test]
+fn a_run_that_falls_back_to_one_thread_keeps_the_one_thread_bits() {
+    use impact_solver::kernels::fallback::{with_policy, Policy, BLOCK};
+    let mut scene = small(PLASTIC);
+    scene.mesh.nx = 128;
+    scene.mesh.ny = 32;
+    scene.time.end = End::At(4e-4);
+    let on = |threads: usize, policy: Policy| {
+        impact_solver::workers::with_threads(threads, || with_policy(policy, || run(&scene)))
+    };
+    let (one, fell_back) = (on(1, Policy::Measure), on(2, Policy::Always));
+    // Steps past block 12, the first try of the team after the fallback (blocks 4-11 alone).
+    let steps = one.summary.n_steps;
+    assert!(steps > u64::from(13 * BLOCK), "{steps} steps");
+    assert_eq!(one.summary.threads_fallback, None);
+    let report = fell_back.summary.threads_fallback.expect("fell back");
+    assert_eq!(report.threads, 2);
+    assert!(
+        report.steps_on_one_thread >= u64::from(8 * BLOCK),
+        "{report:?}"
+    );
+    assert!(
+        report.steps_on_one_thread < steps - u64::from(3 * BLOCK),
+        "{report:?}"
+    );
+    let bits = |o: &Outcome| {
+        o.history
+            .values
+            .iter()
+            .map(|x| x.to_bits())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bits(&one), bits(&fell_back));
+    let json = |s: &impact_solver::Summary| {
+        let mut v = serde_json::to_value(s).unwrap();
+        for k in impact_solver::summary::TIMING_KEYS {
+            v.as_object_mut().unwrap().remove(k);
+        }
+        v
+    };
+    assert_eq!(json(&one.summary), json(&fell_back.summary));
+    let written = serde_json::to_value(&fell_back.summary).unwrap();
+    assert_eq!(written["threads_fallback"]["threads"], 2);
+    assert!(serde_json::to_value(&one.summary)
+        .unwrap()
+        .get("threads_fallback")
+        .is_none());
+}
+
 /// `scene` (a plastic model large enough for the team) run on one and two threads: every
 /// history value and the balance error the same bits.
 fn assert_bit_identical_on_one_and_two_threads(scene: &Scene) {

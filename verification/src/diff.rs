@@ -20,12 +20,7 @@ use crate::diff_input::{check_comparable, read_summary};
 use crate::diff_moves::Move;
 
 /// Summary keys that measure the machine, not the result: shown, never compared.
-pub const TIMING_KEYS: [&str; 4] = [
-    "wall_time_s",
-    "setup_time_s",
-    "loop_time_s",
-    "ns_per_element_step",
-];
+use impact_solver::summary::is_timing_key;
 
 /// How one compared quantity came out.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -262,7 +257,7 @@ fn diff_summaries(a: &Value, b: &Value, tol: f64) -> Vec<KeyDiff> {
     keys.into_iter()
         .map(|key| {
             let (va, vb) = (find(&fa, &key), find(&fb, &key));
-            let timing = TIMING_KEYS.iter().any(|t| key == *t);
+            let timing = is_timing_key(&key);
             key_diff(key, va, vb, tol, timing)
         })
         .collect()

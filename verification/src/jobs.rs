@@ -12,13 +12,8 @@ use serde_json::Value;
 
 use crate::case::{Case, Loc, Refine, SceneSpec};
 
-/// Summary keys that are wall-clock times: never compared, never pinned.
-pub const TIMING_KEYS: [&str; 4] = [
-    "wall_time_s",
-    "setup_time_s",
-    "loop_time_s",
-    "ns_per_element_step",
-];
+/// Summary keys that measure the machine, not the result: shown, never compared.
+pub use impact_solver::summary::TIMING_KEYS;
 
 pub use crate::data::RunData;
 

@@ -420,7 +420,16 @@ fn simulate(
             eprintln!("{note}");
         }
     };
-    match impact_solver::output::simulate_to_dir_with(scene, out, options, &mut say) {
+    use impact_solver::kernels::fallback::{with_policy, Policy};
+    let policy = match Policy::from_env() {
+        Ok(policy) => policy,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let run = || impact_solver::output::simulate_to_dir_with(scene, out, options, &mut say);
+    match with_policy(policy, run) {
         Ok(outcome) => {
             if !quiet {
                 print_summary(&outcome.summary);

@@ -8,10 +8,12 @@
 //! directly into the nodes whose elements are all its own; a node shared by two parts is
 //! summed after the job from the kept forces of its elements, in element order: the same
 //! additions in the same order. Threads only change who computes a chunk or a node, never
-//! the arithmetic.
+//! the arithmetic. While the team is measured slower than one thread ([`Fallback`]), the
+//! calling thread runs the team's parts one after another: the same parts, the same bits.
 
 use std::ops::Range;
 
+use crate::kernels::fallback::{self, Fallback};
 use crate::kernels::row_batches::{add_run, Pending, RowBatches};
 use crate::kernels::workers::{part_range, threads_here, Team};
 use crate::lanes::heap::vec_bytes;
@@ -54,6 +56,8 @@ pub struct Assembly {
 /// What the assembly on several threads needs besides the buffers.
 struct Parallel {
     team: Team,
+    /// Per step: on the team or its parts on the calling thread.
+    fallback: Fallback,
     /// Per node: whether elements of two or more parts meet at it.
     shared: Vec<bool>,
     /// Per element: its slot in `kept` when it has a shared node, else `u32::MAX`.
@@ -93,6 +97,7 @@ impl Parallel {
         let shared_nodes = NodeEntries::new(connectivity, n_nodes, |n| shared[n], |e| slot[e]);
         Parallel {
             team: Team::new(threads),
+            fallback: Fallback::new(threads, fallback::policy_here()),
             shared,
             slot,
             kept: vec![[0.0; 8]; n_kept as usize],
@@ -270,6 +275,11 @@ impl Assembly {
         self.parallel.as_ref().map_or(1, |p| p.team.size())
     }
 
+    /// What the team's fallback to one thread did: `None` unless it fell back.
+    pub fn threads_fallback(&self) -> Option<fallback::Report> {
+        self.parallel.as_ref().and_then(|p| p.fallback.report())
+    }
+
     /// Computes every element's forces with `chunk_kernel(elements of the chunk, their
     /// batches of forces, their states, scatter)` (states: `points` per batch of [`LANES`]
     /// elements; the kernel scatters the forces with `scatter.chunk` and returns the chunk's
@@ -309,6 +319,7 @@ impl Assembly {
         };
         match &mut self.parallel {
             Some(parallel) => {
+                let on_team = parallel.fallback.team_now();
                 let kept = Disjoint::new(&mut parallel.kept);
                 let scatter = Scatter {
                     f: &out,
@@ -316,7 +327,11 @@ impl Assembly {
                     shared: Some((&parallel.shared, &parallel.slot, &kept)),
                 };
                 let team = &parallel.team;
-                team.run(&|part| part_job(part, team.size(), &scatter));
+                if on_team {
+                    team.run(&|part| part_job(part, team.size(), &scatter));
+                } else {
+                    (0..team.size()).for_each(|part| part_job(part, team.size(), &scatter));
+                }
                 let kept = &parallel.kept;
                 parallel.shared_nodes.sum_into(f, |slot, i| kept[slot][i]);
             }
@@ -584,6 +599,52 @@ mod tests {
         for threads in 2..=4 {
             assert_eq!(assembled(threads), one, "{threads} threads");
         }
+    }
+
+    /// Every pass's forces (bits) and the states after `passes` passes on `threads` threads
+    /// under `policy`, and the fallback's report.
+    fn passes_under(
+        policy: fallback::Policy,
+        threads: usize,
+        passes: u32,
+    ) -> (Vec<Vec<u64>>, Vec<u64>, Option<fallback::Report>) {
+        let (conn, n_nodes) = grid();
+        let mut assembly = fallback::with_policy(policy, || Assembly::new(&conn, n_nodes, threads));
+        let mut states = vec![0u64; 4 * conn.len().div_ceil(LANES)];
+        let mut f = vec![f64::NAN; 2 * n_nodes];
+        let forces = (0..passes)
+            .map(|_| {
+                assembly.assemble(
+                    &mut states,
+                    4,
+                    |elements, forces, states, scatter| {
+                        each_element((elements, forces, states, scatter), 4, |e| conn[e], kernel)
+                    },
+                    &mut f,
+                );
+                f.iter().map(|x| x.to_bits()).collect()
+            })
+            .collect();
+        (forces, states, assembly.threads_fallback())
+    }
+
+    #[test]
+    fn a_team_that_falls_back_and_returns_keeps_the_one_thread_bits_at_every_pass() {
+        // Policy::Always: block 0 alone (the reference), 1-2 on the team, 3 a probe alone,
+        // 4-11 fallen back, 12 a try on the team, 13 alone: every kind of pass, both switches.
+        let passes = 14 * fallback::BLOCK;
+        let (one, one_states, none) = passes_under(fallback::Policy::Always, 1, passes);
+        assert_eq!(none, None, "one thread has no team to fall back from");
+        for threads in 2..=3 {
+            let (f, states, report) = passes_under(fallback::Policy::Always, threads, passes);
+            assert!(f == one && states == one_states, "{threads} threads");
+            let report = report.expect("fell back");
+            assert_eq!(report.threads, threads);
+            assert_eq!(report.steps_on_one_thread, u64::from(9 * fallback::BLOCK));
+        }
+        // The measured default on this small mesh may decide either way; its bits are the same.
+        let (f, states, _) = passes_under(fallback::Policy::Measure, 2, passes);
+        assert!(f == one && states == one_states);
     }
 
     #[test]

@@ -274,6 +274,11 @@ pub fn simulate_scene_to_dir_with(
         publish(&staging, out_dir)?;
         Ok(outcome)
     });
+    if let Ok(Outcome { summary, .. }) = &result {
+        if let Some(fallback) = summary.threads_fallback {
+            say(fallback.note(summary.n_steps));
+        }
+    }
     let removed = fs::remove_dir_all(&staging).is_ok();
     result.map_err(|e| match in_user_terms(e, &staging, out_dir) {
         Error::Interrupted { step, time_s, .. } => Error::Interrupted {

@@ -9,15 +9,36 @@ use crate::input::geometry::Geometry;
 use crate::input::scene::{
     ContactLawChoice, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model, Scene,
 };
+use crate::kernels::fallback::Report;
 use crate::mesh::PlateMesh;
 use crate::time_loop::energy::Energies;
 use crate::time_loop::history::{RunTotals, StopReason};
 
-/// Wall-clock split of a run, s.
+/// Summary keys that measure the machine, not the result (wall-clock times and the threads'
+/// fallback, which depends on the machine's load): shown, never compared, never pinned.
+pub const TIMING_KEYS: [&str; 5] = [
+    "wall_time_s",
+    "setup_time_s",
+    "loop_time_s",
+    "ns_per_element_step",
+    "threads_fallback",
+];
+
+/// Whether `key` (a top-level key, or a flattened `key.inner` one) is one of [`TIMING_KEYS`].
+pub fn is_timing_key(key: &str) -> bool {
+    TIMING_KEYS.iter().any(|t| {
+        key.strip_prefix(t)
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with('.'))
+    })
+}
+
+/// Wall-clock split of a run, s, and what the element loop's team measured.
 #[derive(Debug, Clone, Copy)]
 pub struct Timing {
     pub setup_s: f64,
     pub loop_s: f64,
+    /// The team's fallback to one thread, when it fell back.
+    pub threads_fallback: Option<Report>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -88,6 +109,12 @@ pub struct Summary {
     pub loop_time: f64,
     /// Time-loop wall time per element and step, ns.
     pub ns_per_element_step: f64,
+    /// Written only when the element loop's team of threads was measured slower than one
+    /// thread and fell back (`crate::kernels::fallback`; a busy machine): the threads, the
+    /// steps run on one thread, the comparison (s per step). The results' bits are the same
+    /// either way; absent otherwise, so that other summaries keep their bits.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub threads_fallback: Option<Report>,
     /// Surface coupling: the stable step with the penalty springs over the plate's own
     /// (`1/sqrt(1 + penalty_scale)` at least).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -183,6 +210,7 @@ impl Summary {
             loop_time: timing.loop_s,
             ns_per_element_step: 1e9 * timing.loop_s
                 / (n_elements as f64 * t.n_steps.max(1) as f64),
+            threads_fallback: timing.threads_fallback,
             contact_step_factor: t.max_patch.map(|_| t.dt_critical / t.dt_plate),
             max_contact_half_width: t.max_patch.map(|p| p[0]),
             max_nodes_in_contact: t.max_patch.map(|p| p[1]),
