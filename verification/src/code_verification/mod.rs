@@ -20,6 +20,7 @@ pub mod rate_path;
 pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
+pub mod stable_step;
 pub mod static_pulse;
 pub mod thick_cylinder;
 pub mod viscoplastic_truss;
@@ -31,7 +32,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 18] = [
+pub const NAMES: [&str; 19] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -50,6 +51,7 @@ pub const NAMES: [&str; 18] = [
     "viscoplastic-truss",
     "finite-strain-path",
     "membrane-regime",
+    "square-stable-step",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -73,6 +75,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "viscoplastic-truss" => viscoplastic_truss::viscoplastic_truss(p),
         "finite-strain-path" => finite_path::finite_strain_path(p),
         "membrane-regime" => membrane::membrane_regime(p),
+        "square-stable-step" => stable_step::square_stable_step(p),
         _ => return None,
     })
 }
