@@ -22,6 +22,7 @@ pub mod space_time;
 pub mod spring;
 pub mod stable_step;
 pub mod static_pulse;
+pub mod table_path;
 pub mod thick_cylinder;
 pub mod viscoplastic_truss;
 
@@ -32,7 +33,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 19] = [
+pub const NAMES: [&str; 20] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -52,6 +53,7 @@ pub const NAMES: [&str; 19] = [
     "finite-strain-path",
     "membrane-regime",
     "square-stable-step",
+    "table-strain-path",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -76,6 +78,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "finite-strain-path" => finite_path::finite_strain_path(p),
         "membrane-regime" => membrane::membrane_regime(p),
         "square-stable-step" => stable_step::square_stable_step(p),
+        "table-strain-path" => table_path::table_strain_path(p),
         _ => return None,
     })
 }

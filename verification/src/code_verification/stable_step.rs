@@ -27,7 +27,12 @@ use super::param;
 use crate::data::RunData;
 
 /// The closed form and the wrong models, s: (`dt_closed_form_s`, the wrong models by name).
-fn steps(youngs_modulus: f64, poisson_ratio: f64, density: f64, h: f64) -> [(&'static str, f64); 4] {
+fn steps(
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    density: f64,
+    h: f64,
+) -> [(&'static str, f64); 4] {
     let (e, nu) = (youngs_modulus, poisson_ratio);
     let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
     let mu = e / (2.0 * (1.0 + nu));
