@@ -24,6 +24,7 @@ pub mod stable_step;
 pub mod static_pulse;
 pub mod table_path;
 pub mod thick_cylinder;
+pub mod thread_invariance;
 pub mod viscoplastic_truss;
 
 use std::collections::BTreeMap;
@@ -33,7 +34,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 20] = [
+pub const NAMES: [&str; 21] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -54,6 +55,7 @@ pub const NAMES: [&str; 20] = [
     "membrane-regime",
     "square-stable-step",
     "table-strain-path",
+    "thread-invariance",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -79,6 +81,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "membrane-regime" => membrane::membrane_regime(p),
         "square-stable-step" => stable_step::square_stable_step(p),
         "table-strain-path" => table_path::table_strain_path(p),
+        "thread-invariance" => thread_invariance::thread_invariance(p),
         _ => return None,
     })
 }
