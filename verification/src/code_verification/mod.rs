@@ -16,6 +16,7 @@ pub mod manufactured;
 pub mod membrane;
 pub mod orders;
 pub mod plastic_path;
+pub mod probe_point;
 pub mod rate_path;
 pub mod rigid_target;
 pub mod space_time;
@@ -34,7 +35,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 21] = [
+pub const NAMES: [&str; 22] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -56,6 +57,7 @@ pub const NAMES: [&str; 21] = [
     "square-stable-step",
     "table-strain-path",
     "thread-invariance",
+    "probe-point",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -82,6 +84,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "square-stable-step" => stable_step::square_stable_step(p),
         "table-strain-path" => table_path::table_strain_path(p),
         "thread-invariance" => thread_invariance::thread_invariance(p),
+        "probe-point" => probe_point::probe_point(p),
         _ => return None,
     })
 }
