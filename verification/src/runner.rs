@@ -441,10 +441,11 @@ fn assemble_judged(
     matrix
         .cases
         .extend(plan.broken.iter().map(|b| broken_row(b)));
-    matrix.cases.extend(invariant_row(plan, &slots, filter));
     matrix
         .cases
         .sort_by(|a, b| (&a.suite, &a.case).cmp(&(&b.suite, &b.case)));
+    // The matrix's own invariant on the runs above, after the cases of the selection.
+    matrix.cases.extend(invariant_row(plan, &slots, filter));
     matrix.counts = Counts::from_tally(&matrix.tally());
     Outcome { matrix, data }
 }
