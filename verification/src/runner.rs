@@ -14,6 +14,7 @@ use serde::Serialize;
 use crate::broken::Broken;
 use crate::case::{Case, Category};
 use crate::check::{self, CheckResult, Context, Status};
+use crate::history_invariants;
 use crate::jobs::{self, Job, JobResult};
 use crate::verdict::{Tally, Verdict};
 
@@ -443,8 +444,57 @@ fn assemble_judged(
     matrix
         .cases
         .sort_by(|a, b| (&a.suite, &a.case).cmp(&(&b.suite, &b.case)));
+    // The matrix's own invariant on the runs above, after the cases of the selection.
+    matrix.cases.extend(invariant_row(plan, &slots, filter));
     matrix.counts = Counts::from_tally(&matrix.tally());
     Outcome { matrix, data }
+}
+
+/// The row of [`history_invariants`] from the plan's impact runs, each named by the first
+/// case and scene that uses it; `None` when no check is left.
+fn invariant_row(
+    plan: &Plan,
+    slots: &[Option<JobResult>],
+    filter: &Option<String>,
+) -> Option<CaseResult> {
+    let mut names = BTreeMap::new();
+    for (case, jobs_of) in plan.cases.iter().zip(&plan.case_jobs) {
+        for (scene, i) in jobs_of {
+            if let Ok(i) = i {
+                names
+                    .entry(*i)
+                    .or_insert_with(|| format!("{}/{}/{scene}", case.suite, case.name));
+            }
+        }
+    }
+    let runs = names.iter().filter_map(|(i, name)| match &slots[*i] {
+        Some(Ok(run)) => Some((name.clone(), run.as_ref())),
+        _ => None,
+    });
+    let checks = history_invariants::case_checks(runs, filter);
+    if checks.is_empty() {
+        return None;
+    }
+    Some(CaseResult {
+        suite: history_invariants::SUITE.into(),
+        case: history_invariants::CASE.into(),
+        id: history_invariants::CASE.into(),
+        title: history_invariants::TITLE.into(),
+        requirement_id: history_invariants::REQUIREMENT.0.into(),
+        requirement: history_invariants::REQUIREMENT.1.into(),
+        category: Category::CodeVerification,
+        heavy: false,
+        problem: history_invariants::PROBLEM.into(),
+        modelling: BTreeMap::new(),
+        metrics: BTreeMap::new(),
+        job_errors: BTreeMap::new(),
+        series: BTreeMap::new(),
+        plots: Vec::new(),
+        report: None,
+        checks,
+        wrong_models: BTreeMap::new(),
+        discrimination: Vec::new(),
+    })
 }
 
 /// One case's runs by scene name (`result(i)`: job i's result, None when it did not run),

@@ -17,12 +17,16 @@ pub mod manufactured;
 pub mod membrane;
 pub mod orders;
 pub mod plastic_path;
+pub mod probe_point;
 pub mod rate_path;
 pub mod rigid_target;
 pub mod space_time;
 pub mod spring;
+pub mod stable_step;
 pub mod static_pulse;
+pub mod table_path;
 pub mod thick_cylinder;
+pub mod thread_invariance;
 pub mod viscoplastic_truss;
 
 use std::collections::BTreeMap;
@@ -32,7 +36,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 19] = [
+pub const NAMES: [&str; 23] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -52,6 +56,10 @@ pub const NAMES: [&str; 19] = [
     "finite-strain-path",
     "membrane-regime",
     "axisymmetric",
+    "square-stable-step",
+    "table-strain-path",
+    "thread-invariance",
+    "probe-point",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -76,6 +84,10 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "finite-strain-path" => finite_path::finite_strain_path(p),
         "membrane-regime" => membrane::membrane_regime(p),
         "axisymmetric" => axisymmetric::axisymmetric(p),
+        "square-stable-step" => stable_step::square_stable_step(p),
+        "table-strain-path" => table_path::table_strain_path(p),
+        "thread-invariance" => thread_invariance::thread_invariance(p),
+        "probe-point" => probe_point::probe_point(p),
         _ => return None,
     })
 }
