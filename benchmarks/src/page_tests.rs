@@ -82,7 +82,7 @@ fn the_page_shows_every_file_of_the_folder() {
     );
     // Targets: two kernels and the elasto-plastic run; one missed.
     assert!(
-        md.contains("**Targets** (of the speed issue, issue 12): 2 of 3 met."),
+        md.contains("**Targets** (speed): 2 of 3 met."),
         "{md}"
     );
     assert!(
