@@ -22,6 +22,7 @@ pub mod jobs;
 pub mod lint;
 pub mod markdown;
 pub mod plot;
+pub mod plot_style;
 pub mod repo;
 pub mod report;
 pub mod report_paper;
