@@ -18,6 +18,7 @@ pub mod diff_moves;
 pub mod discriminate;
 pub mod evidence_report;
 pub mod gci;
+pub mod html_tokens;
 pub mod jobs;
 pub mod lint;
 pub mod markdown;
