@@ -4,12 +4,15 @@
 //! one line (`white-space: nowrap`). With `overflow-wrap: normal` on the cells, a long word
 //! widens its column instead of being split ("stat us", "toler ance", "rel 1.0e- 8" were
 //! the splits of `overflow-wrap: anywhere` and of the emergency breaks of `break-word`).
-//! The report's browser check asserts the rule on the rendered page.
+//! A table that is then wider than the page scrolls sideways in its own box
+//! (`<div class="scroll">`, `overflow-x: auto`) rather than widening the page. The report's
+//! browser check asserts both on the rendered page.
 
 /// Elements whose content is copied untouched (no text of a cell to protect).
 const VERBATIM: [&str; 3] = ["svg", "style", "script"];
 
-/// `html` with the break-prone words of its table cells wrapped in `<span class="tok">`.
+/// `html` with the break-prone words of its table cells wrapped in `<span class="tok">` and
+/// each table in a `<div class="scroll">`.
 pub fn keep_tokens_whole(html: &str) -> String {
     let mut out = String::with_capacity(html.len() + html.len() / 8);
     let mut depth = 0usize; // open <td>/<th>
@@ -46,6 +49,16 @@ pub fn keep_tokens_whole(html: &str) -> String {
             } else {
                 depth + 1
             };
+        }
+        match (name.as_str(), closing) {
+            ("table", false) => out.push_str("<div class=\"scroll\">"),
+            ("table", true) => {
+                out.push_str(tag);
+                out.push_str("</div>");
+                rest = &rest[gt + 1..];
+                continue;
+            }
+            _ => {}
         }
         out.push_str(tag);
         rest = &rest[gt + 1..];
@@ -103,7 +116,8 @@ mod tests {
                     <td><b>mesh-change-impulse</b><br>see reference-data/paper/table1.csv, and more</td></tr></table>";
         let out = keep_tokens_whole(html);
         assert!(out.starts_with("<p>a-b outside</p>"), "{out}");
-        assert!(out.contains("<th>status</th>"));
+        assert!(out.contains("<div class=\"scroll\"><table><tr><th>status</th>"));
+        assert!(out.ends_with("</table></div>"));
         assert!(
             out.contains(">rel <span class=\"tok\">1.0e-8</span></td>"),
             "{out}"
@@ -119,8 +133,11 @@ mod tests {
 
     #[test]
     fn svg_and_entities_are_left_as_they_are() {
-        let html = "<table><tr><td><svg><text>a-b</text></svg> x &amp; y</td></tr></table>";
-        assert_eq!(keep_tokens_whole(html), html);
+        let cell = "<tr><td><svg><text>a-b</text></svg> x &amp; y</td></tr>";
+        assert_eq!(
+            keep_tokens_whole(&format!("<table>{cell}</table>")),
+            format!("<div class=\"scroll\"><table>{cell}</table></div>")
+        );
         assert!(!breakable("done."));
         assert!(breakable("1.0e-8"));
         assert!(breakable("(mm)"));
