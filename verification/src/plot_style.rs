@@ -34,7 +34,7 @@ const FIXED: [(&str, usize); 9] = [
     ("strain energy", 2),
     ("contact energy", 3),
     ("plastic work", 4),
-    ("external work", 5),
+    ("external work", 8),
     ("contact force", 6),
     ("energy balance error", 7),
     ("runs", 0),
