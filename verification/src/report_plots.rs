@@ -359,7 +359,7 @@ mod tests {
         let e = shown_order(&[0.08, 0.68]).unwrap_err();
         assert_eq!(
             e,
-            "no observed order: triplets 0.08, 0.68 differ by more than 20 %"
+            "no observed order: triplets 0.08, 0.68, the two finest differ by more than 20 %"
         );
         assert!(shown_order(&[1.28])
             .unwrap_err()
