@@ -153,9 +153,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
             result.message = e;
             // The bound or reference value still shows (a failed run printed "<= -"), when
             // it does not come from the run itself.
-            if reference.metric.is_none() && measure.error.is_none() {
-                result.reference = reference_value(&reference, measure, ctx).ok();
-            }
+            result.reference = run_free_reference(&reference, measure, ctx);
             return result;
         }
     };
@@ -418,6 +416,15 @@ pub fn series_change(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<f
         (Some(first), Some(last)) if f.len() >= 2 => Ok(((first - last) / last).abs()),
         _ => Err("a change needs at least two levels".into()),
     }
+}
+
+/// The reference when it does not come from the run (a literal, a table cell, a JSON
+/// value): what a check whose measure failed still shows.
+fn run_free_reference(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Option<f64> {
+    if r.metric.is_some() || measure.error.is_some() {
+        return None;
+    }
+    reference_value(r, measure, ctx).ok()
 }
 
 fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Result<f64, String> {

@@ -102,6 +102,80 @@ pub fn reading_context(results: &serde_json::Value) -> serde_json::Value {
     })
 }
 
+/// Table 1's rows: (paper quantity, label, metric, scale to the paper's unit, the ids of the
+/// checks of the cells: elastic, elasto-plastic, ratio).
+type Table1Row = (
+    &'static str,
+    &'static str,
+    &'static str,
+    f64,
+    [Option<&'static str>; 3],
+);
+const TABLE1_ROWS: [Table1Row; 6] = [
+    (
+        "impulse",
+        "Impulse (N s)",
+        "impulse_Ns",
+        1.0,
+        [None, Some("impulse-plastic"), Some("ratio-impulse")],
+    ),
+    (
+        "max_contact_load",
+        "Max. contact load (kN)",
+        "peak_contact_force_N",
+        1e-3,
+        [
+            Some("peak-force-elastic"),
+            Some("peak-force-plastic"),
+            Some("ratio-peak-force"),
+        ],
+    ),
+    (
+        "max_plate_displacement",
+        "Max. displacement (mm)",
+        "max_plate_displacement_m",
+        1e3,
+        [
+            Some("max-displacement-elastic"),
+            Some("max-displacement-plastic"),
+            Some("ratio-displacement"),
+        ],
+    ),
+    (
+        "contact_duration",
+        "Contact duration (ms)",
+        "contact_duration_s",
+        1e3,
+        [
+            Some("duration-elastic"),
+            Some("duration-plastic"),
+            Some("ratio-duration"),
+        ],
+    ),
+    (
+        "impactor_final_velocity",
+        "Final impactor velocity (m/s)",
+        "final_impactor_velocity_mps",
+        1.0,
+        [
+            None,
+            Some("final-velocity-plastic"),
+            Some("ratio-final-velocity"),
+        ],
+    ),
+    (
+        "max_effective_stress_point_a",
+        "Max. von Mises at A (MPa)",
+        "max_von_mises_Pa.A",
+        1e-6,
+        [
+            Some("stress-A-elastic"),
+            Some("stress-A-plastic"),
+            Some("ratio-stress-A"),
+        ],
+    ),
+];
+
 /// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
 pub fn paper_tables(
     results: &serde_json::Value,
@@ -115,73 +189,7 @@ pub fn paper_tables(
     let t1 = find(PaperTable::PaperTable1);
     let path1 = root.join("reference-data/paper/table1.csv");
     let mut table1 = Vec::new();
-    // (paper quantity, label, metric, scale to the paper's unit, the checks' ids: elastic,
-    // elasto-plastic, ratio).
-    let rows1: [(&str, &str, &str, f64, [Option<&str>; 3]); 6] = [
-        (
-            "impulse",
-            "Impulse (N s)",
-            "impulse_Ns",
-            1.0,
-            [None, Some("impulse-plastic"), Some("ratio-impulse")],
-        ),
-        (
-            "max_contact_load",
-            "Max. contact load (kN)",
-            "peak_contact_force_N",
-            1e-3,
-            [
-                Some("peak-force-elastic"),
-                Some("peak-force-plastic"),
-                Some("ratio-peak-force"),
-            ],
-        ),
-        (
-            "max_plate_displacement",
-            "Max. displacement (mm)",
-            "max_plate_displacement_m",
-            1e3,
-            [
-                Some("max-displacement-elastic"),
-                Some("max-displacement-plastic"),
-                Some("ratio-displacement"),
-            ],
-        ),
-        (
-            "contact_duration",
-            "Contact duration (ms)",
-            "contact_duration_s",
-            1e3,
-            [
-                Some("duration-elastic"),
-                Some("duration-plastic"),
-                Some("ratio-duration"),
-            ],
-        ),
-        (
-            "impactor_final_velocity",
-            "Final impactor velocity (m/s)",
-            "final_impactor_velocity_mps",
-            1.0,
-            [
-                None,
-                Some("final-velocity-plastic"),
-                Some("ratio-final-velocity"),
-            ],
-        ),
-        (
-            "max_effective_stress_point_a",
-            "Max. von Mises at A (MPa)",
-            "max_von_mises_Pa.A",
-            1e-6,
-            [
-                Some("stress-A-elastic"),
-                Some("stress-A-plastic"),
-                Some("ratio-stress-A"),
-            ],
-        ),
-    ];
-    for (q, label, key, scale, ids) in rows1 {
+    for (q, label, key, scale, ids) in TABLE1_ROWS {
         let mut sel = std::collections::BTreeMap::new();
         sel.insert("quantity".to_string(), q.to_string());
         let printed = |col: &str| crate::check::table_text(&path1, &sel, col).ok();
