@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Opens the V&V report (index.html) in headless Chromium and checks that a reader sees it whole
-(issue 13, section 3): every figure renders and no table overflows the page.
+"""Opens the V&V report (index.html) in headless Chromium and checks that a reader sees it whole:
+every figure renders, no table overflows the page, no table cell breaks a word, and no legend
+covers a plot's data.
 
 - A figure is every <img> (loaded, natural size > 0) and every inline <svg> (laid out with a
   size > 0 and drawing something: at least one path, line, rect, circle, polyline, polygon or
@@ -10,6 +11,13 @@
   deliberate scroll box (an ancestor with CSS overflow-x auto or scroll, e.g. a wide benchmark
   table in its own box) may be wider than the page, but that box itself must fit.
 - Tables inside closed <details> are opened first, so they are checked too.
+- No table cell breaks a word across lines: every whitespace-separated word of a cell's text
+  (within one text node) lies on one line, measured with the client rectangles of its text
+  range (a word split as "stat|us" or "rel 1.0e-|8" has rectangles on two lines).
+- No legend covers a plot's data: every SVG figure (inline, or an <img> with an SVG data URI)
+  that marks its legend (rect.legend-box, as the report's plots and the benchmarks' do)
+  also marks its data area (rect.data-area), and the two rectangles do not overlap. Figures
+  without a marked legend are not judged (counted apart).
 
 Screenshots of the whole page and of each top-level section (h2) go to --screens, for review.
 
@@ -99,7 +107,66 @@ INSPECT_JS = r"""
   if (doc.scrollWidth > doc.clientWidth + 1) {
     problems.push(`the page scrolls sideways: ${doc.scrollWidth} px wide in a ${doc.clientWidth} px window`);
   }
-  return { problems, imgs: imgs.length, svgs: svgs.length, tables: tables.length, boxed };
+  // Words split across lines inside table cells.
+  let cells = 0, words = 0, broken = 0;
+  const lines = (rects) => {
+    const tops = [];
+    for (const r of rects) {
+      if (r.width <= 0 || r.height <= 0) continue;
+      if (!tops.some((t) => Math.abs(t - r.top) < r.height / 2)) tops.push(r.top);
+    }
+    return tops.length;
+  };
+  for (const cell of document.querySelectorAll("td, th")) {
+    cells += 1;
+    const walk = document.createTreeWalker(cell, NodeFilter.SHOW_TEXT);
+    for (let node = walk.nextNode(); node; node = walk.nextNode()) {
+      if (node.parentElement.closest("svg")) continue;
+      for (const m of node.data.matchAll(/\S+/g)) {
+        words += 1;
+        const range = document.createRange();
+        range.setStart(node, m.index);
+        range.setEnd(node, m.index + m[0].length);
+        if (lines(range.getClientRects()) > 1) {
+          broken += 1;
+          if (broken <= 20) {
+            problems.push(`a table cell breaks the word "${m[0].slice(0, 40)}" across lines ${where(cell.closest("table"))}`);
+          }
+        }
+      }
+    }
+  }
+  if (broken > 20) problems.push(`... and ${broken - 20} more words broken across lines`);
+  // Legends over the data area, read from the marks the plots carry.
+  const rect = (svg, cls) => {
+    const r = svg.querySelector(`rect.${cls}`);
+    if (!r) return null;
+    return ["x", "y", "width", "height"].map((a) => parseFloat(r.getAttribute(a)));
+  };
+  const overlap = (a, b) => a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] && b[1] < a[1] + a[3];
+  let legends = 0, unmarked = 0;
+  const judge = (svg, el) => {
+    const legend = rect(svg, "legend-box");
+    if (!legend) { unmarked += 1; return; }
+    legends += 1;
+    const data = rect(svg, "data-area");
+    if (!data) {
+      problems.push(`a plot marks its legend but not its data area ${where(el)}`);
+    } else if (overlap(legend, data)) {
+      problems.push(`a legend covers the data area of a plot (legend ${legend.map(Math.round)}, data ${data.map(Math.round)}) ${where(el)}`);
+    }
+  };
+  for (const svg of svgs) judge(svg, svg);
+  for (const img of imgs) {
+    const src = img.getAttribute("src") || "";
+    const head = "data:image/svg+xml;base64,";
+    if (!src.startsWith(head)) continue;
+    const text = new TextDecoder().decode(Uint8Array.from(atob(src.slice(head.length)), (c) => c.charCodeAt(0)));
+    const svg = new DOMParser().parseFromString(text, "image/svg+xml").documentElement;
+    judge(svg, img);
+  }
+  return { problems, imgs: imgs.length, svgs: svgs.length, tables: tables.length, boxed,
+           cells, words, legends, unmarked };
 }
 """
 
@@ -113,13 +180,18 @@ class Outcome:
     svgs: int = 0
     tables: int = 0
     boxed: int = 0
+    cells: int = 0
+    words: int = 0
+    legends: int = 0
+    unmarked: int = 0
     screenshots: list[Path] = field(default_factory=list)
 
     def line(self) -> str:
         return (
             f"browser check: {self.imgs + self.svgs} figures ({self.imgs} img, {self.svgs} svg), "
-            f"{self.tables} tables ({self.boxed} in scroll boxes), {len(self.problems)} problems, "
-            f"{len(self.screenshots)} screenshots"
+            f"{self.tables} tables ({self.boxed} in scroll boxes, {self.cells} cells, {self.words} words "
+            f"kept whole), {self.legends} legends outside the data area ({self.unmarked} figures "
+            f"without a marked legend), {len(self.problems)} problems, {len(self.screenshots)} screenshots"
         )
 
 
@@ -179,6 +251,10 @@ def check_page(html: Path, screens: Path | None) -> Outcome:
                     svgs=found["svgs"],
                     tables=found["tables"],
                     boxed=found["boxed"],
+                    cells=found["cells"],
+                    words=found["words"],
+                    legends=found["legends"],
+                    unmarked=found["unmarked"],
                 )
                 if screens is not None:
                     out.screenshots = screenshots(page, screens)

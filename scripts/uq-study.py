@@ -114,7 +114,7 @@ def main() -> int:
         cluster = LocalCluster(n_workers=args.dask, threads_per_worker=1, processes=True)
         client = Client(cluster)
     page = ["# Uncertainty: V&V 20 budgets, Sobol' indices, rigid-plastic bounds\n",
-            "Written by `scripts/uq-study.py` (issue 27) with `impact.uq`. The paper's numbers are "
+            "Written by `scripts/uq-study.py` with `impact.uq`. The paper's numbers are "
             "computed results, not measurements: each row is a code-to-literature comparison. "
             "Every Table 1 number and all 14 Table 2 impulses entered the reconstruction's "
             "objective (reference-data/paper/reconstruction/report.md section 2): they are "

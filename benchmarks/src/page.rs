@@ -185,7 +185,7 @@ fn targets(kernels: Option<&Table>, runs: Option<&Table>) -> String {
     }
     let met = rows.iter().filter(|r| r[3] == "met").count();
     format!(
-        "**Targets** (of the speed issue, issue 12): {met} of {} met.\n\n{}\n",
+        "**Targets** (speed): {met} of {} met.\n\n{}\n",
         rows.len(),
         markdown_table(&["target", "measured", "target value", "status"], &rows)
     )

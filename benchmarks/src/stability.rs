@@ -17,11 +17,28 @@ const BALANCE_BOUND: f64 = 1e-2;
 /// energy-consistent scenes is the same 10 %).
 const BLOW_UP: f64 = 0.1;
 
+/// One run's row: its status, the largest energy balance error and the impulse identity's
+/// error (both relative; None when the run stopped before the end, so there are none),
+/// and a note (steps run, or where and why it stopped).
 struct Outcome {
     status: &'static str,
-    balance: f64,
-    impulse_error: f64,
+    balance: Option<f64>,
+    impulse_error: Option<f64>,
     note: String,
+}
+
+impl Outcome {
+    /// The two error cells: the values, or for a run that did not finish what happened
+    /// instead (a stopped run has no end-of-run errors; "NaN" read as a computed value).
+    fn error_cells(&self) -> [String; 2] {
+        match (self.balance, self.impulse_error) {
+            (Some(b), Some(i)) => [format!("{b:.2e}"), format!("{i:.1e}")],
+            _ => [
+                format!("none ({})", self.status),
+                format!("none ({})", self.status),
+            ],
+        }
+    }
 }
 
 fn attempt(scene: &Scene) -> Outcome {
@@ -40,23 +57,37 @@ fn attempt(scene: &Scene) -> Outcome {
             };
             Outcome {
                 status,
-                balance: s.max_energy_balance_error,
-                impulse_error,
+                balance: Some(s.max_energy_balance_error),
+                impulse_error: Some(impulse_error),
                 note: format!("{} steps", s.n_steps),
             }
         }
-        Err(Error::Run { step, what, .. }) => Outcome {
+        Err(Error::Run { step, time_s, what }) => Outcome {
             status: "stopped",
-            balance: f64::NAN,
-            impulse_error: f64::NAN,
-            note: format!("step {step}: {}", what.split(':').next().unwrap_or(&what)),
+            balance: None,
+            impulse_error: None,
+            note: format!(
+                "stopped at t = {time_s:.3e} s (step {step}): {}",
+                stop_reason(&what)
+            ),
         },
         Err(e) => Outcome {
             status: "refused",
-            balance: f64::NAN,
-            impulse_error: f64::NAN,
+            balance: None,
+            impulse_error: None,
             note: e.to_string(),
         },
+    }
+}
+
+/// A stop's reason in a few words: the solver's "unstable" stops are a blow-up caught (the
+/// energy balance or the contact law left its bound), other stops keep their first clause.
+fn stop_reason(what: &str) -> String {
+    let first = what.split(':').next().unwrap_or(what);
+    if first.trim() == "unstable" {
+        "blow-up caught by the solver (unstable)".to_string()
+    } else {
+        first.to_string()
     }
 }
 
@@ -129,6 +160,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                 let mut s = base.clone();
                 s.time.dt = DtChoice::Cfl(cfl);
                 let o = attempt(&s);
+                let [balance, impulse] = o.error_cells();
                 if cfl < 1.0 && o.status != "bounded" {
                     violations += 1;
                 }
@@ -137,8 +169,8 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
                     if plastic { "plastic" } else { "elastic" }.into(),
                     format!("{cfl:.1}"),
                     o.status.into(),
-                    format!("{:.2e}", o.balance),
-                    format!("{:.1e}", o.impulse_error),
+                    balance,
+                    impulse,
                     o.note,
                 ]);
             }
@@ -265,13 +297,37 @@ fn extreme_inputs(quick: bool) -> Vec<Vec<String>> {
         .into_iter()
         .map(|(name, scene)| {
             let o = attempt(&scene);
-            vec![
-                name,
-                o.status.into(),
-                format!("{:.2e}", o.balance),
-                format!("{:.1e}", o.impulse_error),
-                o.note,
-            ]
+            let [balance, impulse] = o.error_cells();
+            vec![name, o.status.into(), balance, impulse, o.note]
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    //! A run that stops prints what happened, not NaN (the page printed "NaN | NaN" for the
+    //! stopped runs of the CFL sweep and the extreme inputs).
+    use super::*;
+
+    #[test]
+    fn a_stopped_run_says_where_and_why_not_nan() {
+        let mut s = small(false, "uniform");
+        s.time.dt = DtChoice::Cfl(1.2);
+        let o = attempt(&s);
+        assert_eq!(o.status, "stopped");
+        assert_eq!(o.error_cells(), ["none (stopped)", "none (stopped)"]);
+        assert!(
+            o.note.starts_with("stopped at t = ") && o.note.contains("(step "),
+            "{}",
+            o.note
+        );
+        assert!(o.note.contains("blow-up caught"), "{}", o.note);
+        let bounded = Outcome {
+            status: "bounded",
+            balance: Some(2.42e-5),
+            impulse_error: Some(6.0e-15),
+            note: String::new(),
+        };
+        assert_eq!(bounded.error_cells(), ["2.42e-5", "6.0e-15"]);
+    }
 }

@@ -19,6 +19,8 @@ use plotters::prelude::*;
 
 use impact_analytical::plane_wave::PlaneWave;
 
+use impact_verification::plot_style::{self, Entry, Mark};
+
 use crate::common::{markdown_table, paper, pulse, timed, write_csv, Timing};
 use crate::pareto;
 use crate::references::{load_or_compute, Measured, Schedule};
@@ -403,7 +405,35 @@ enum Axis {
     WaveSpeed,
 }
 
-fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<()> {
+/// The plot's chart size in pixels; the legend's strip goes below it.
+const WIDTH: u32 = 760;
+const CHART_HEIGHT: u32 = 520;
+const MARGIN: u32 = 12;
+
+/// The legend entries: each configuration in its colour by name (the report's palette,
+/// readable on white), then the Pareto front in black.
+fn legend_entries(series: &[Series]) -> Vec<Entry> {
+    let names: Vec<&str> = series.iter().map(|s| s.0.as_str()).collect();
+    let mut entries: Vec<Entry> = series
+        .iter()
+        .zip(plot_style::colours(&names))
+        .map(|(s, colour)| Entry {
+            label: s.0.clone(),
+            colour,
+            mark: Mark::Line,
+        })
+        .collect();
+    entries.push(Entry {
+        label: "Pareto front (no other is faster and more accurate)".into(),
+        colour: plot_style::GUIDE,
+        mark: Mark::Line,
+    });
+    entries
+}
+
+/// The work-precision plot as SVG: log error against log wall time, each configuration's
+/// curve, the Pareto front, the legend in a strip below the chart (never over the data).
+fn plot_svg(title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<String> {
     let all = series.iter().flat_map(|s| s.1.iter());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for &(x, y) in all {
@@ -412,63 +442,72 @@ fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Resu
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
-    let root = SVGBackend::new(path, (760, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let xlabel = match axis {
-        Axis::History => "error: RMS of mid-span displacement history / its peak",
-        Axis::Robust => "error: max relative error of impulse, final velocity, max displacement",
-        Axis::WaveSpeed => "error: |measured P-wave speed / closed form - 1|",
-    };
-    let mut chart = ChartBuilder::on(&root)
-        .caption(format!("work-precision: {title}"), ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(
-            (x0 / 1.5..x1 * 1.5)
-                .log_scale()
-                .with_key_points(log_ticks(x0 / 1.5, x1 * 1.5)),
-            (y0 / 1.5..y1 * 1.5)
-                .log_scale()
-                .with_key_points(log_ticks(y0 / 1.5, y1 * 1.5)),
-        )?;
-    chart
-        .configure_mesh()
-        .x_desc(xlabel)
-        .y_desc("wall time, s (min of the timed runs)")
-        .x_label_formatter(&|v| tick_label(*v))
-        .y_label_formatter(&|v| tick_label(*v))
-        .draw()?;
-    for (i, (name, points)) in series.iter().enumerate() {
-        let color = Palette99::pick(i).to_rgba();
+    let entries = legend_entries(series);
+    let labels: Vec<&str> = entries.iter().map(|e| e.label.as_str()).collect();
+    let legend_width = WIDTH - 2 * MARGIN;
+    let legend_height = plot_style::layout(&labels, legend_width).1;
+    let mut text = String::new();
+    let area;
+    {
+        let root =
+            SVGBackend::with_string(&mut text, (WIDTH, CHART_HEIGHT + legend_height + MARGIN))
+                .into_drawing_area();
+        root.fill(&WHITE)?;
+        let (chart_area, _) = root.split_vertically(CHART_HEIGHT);
+        let xlabel = match axis {
+            Axis::History => "error: RMS of mid-span displacement history / its peak",
+            Axis::Robust => {
+                "error: max relative error of impulse, final velocity, max displacement"
+            }
+            Axis::WaveSpeed => "error: |measured P-wave speed / closed form - 1|",
+        };
+        let mut chart = ChartBuilder::on(&chart_area)
+            .caption(format!("work-precision: {title}"), ("sans-serif", 18))
+            .margin(MARGIN)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(
+                (x0 / 1.5..x1 * 1.5)
+                    .log_scale()
+                    .with_key_points(log_ticks(x0 / 1.5, x1 * 1.5)),
+                (y0 / 1.5..y1 * 1.5)
+                    .log_scale()
+                    .with_key_points(log_ticks(y0 / 1.5, y1 * 1.5)),
+            )?;
         chart
-            .draw_series(LineSeries::new(
+            .configure_mesh()
+            .x_desc(xlabel)
+            .y_desc("wall time, s (min of the timed runs)")
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
+            .draw()?;
+        for ((_, points), entry) in series.iter().zip(&entries) {
+            let color = entry.colour.to_rgba();
+            chart.draw_series(LineSeries::new(
                 points.iter().copied(),
                 color.stroke_width(2),
-            ))?
-            .label(name)
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2))
-            });
-        chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+            ))?;
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        }
+        // The Pareto front over all configurations: fastest to most accurate.
+        let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
+        let front: Vec<(f64, f64)> = pareto::front(&points)
+            .into_iter()
+            .map(|i| points[i])
+            .collect();
+        chart.draw_series(LineSeries::new(front, BLACK.stroke_width(1)))?;
+        area = chart.plotting_area().get_pixel_range();
+        root.present()?;
     }
-    // The Pareto front over all configurations: fastest to most accurate.
-    let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
-    let front: Vec<(f64, f64)> = pareto::front(&points)
-        .into_iter()
-        .map(|i| points[i])
-        .collect();
-    chart
-        .draw_series(LineSeries::new(front, BLACK.stroke_width(1)))?
-        .label("Pareto front (no other is faster and more accurate)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(1)));
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
-    root.present()?;
+    let legend = plot_style::legend_svg(&entries, MARGIN, CHART_HEIGHT, legend_width);
+    Ok(plot_style::append(
+        &text,
+        &(plot_style::data_area(area.0, area.1) + &legend),
+    ))
+}
+
+fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<()> {
+    std::fs::write(path, plot_svg(title, axis, series)?)?;
     Ok(())
 }
 
@@ -502,7 +541,33 @@ fn tick_label(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{log_ticks, tick_label};
+    use super::{log_ticks, plot_style, plot_svg, tick_label, Axis, Series};
+
+    /// The legend sits in its strip below the chart: the old one, plotters' own in the upper
+    /// right, covered a third of the data area of a quick run's plot.
+    #[test]
+    fn the_legend_is_below_the_data_area() {
+        let series: Vec<Series> = [
+            "q4-sri cfl 0.3",
+            "q4-sri cfl 0.9",
+            "q4-full cfl 0.3",
+            "q4-1pt cfl 0.9",
+        ]
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let pts = (1..5)
+                .map(|i| (1e-3 * i as f64, 1e-2 / (i + k) as f64))
+                .collect();
+            (name.to_string(), pts)
+        })
+        .collect();
+        let svg = plot_svg("impact elastic", Axis::Robust, &series).unwrap();
+        let data = plot_style::marked_rect(&svg, "data-area").unwrap();
+        let legend = plot_style::marked_rect(&svg, "legend-box").unwrap();
+        assert!(!plot_style::overlap(data, legend), "{data:?} {legend:?}");
+        assert!(svg.contains(">Pareto front (no other is faster and more accurate)</text>"));
+    }
 
     #[test]
     fn log_ticks_give_at_least_four_on_a_short_range() {

@@ -151,6 +151,9 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         Ok(v) => v,
         Err(e) => {
             result.message = e;
+            // The bound or reference value still shows (a failed run printed "<= -"), when
+            // it does not come from the run itself.
+            result.reference = run_free_reference(&reference, measure, ctx);
             return result;
         }
     };
@@ -415,6 +418,15 @@ pub fn series_change(q: &crate::case::SeriesQuantity, ctx: &Context) -> Result<f
     }
 }
 
+/// The reference when it does not come from the run (a literal, a table cell, a JSON
+/// value): what a check whose measure failed still shows.
+fn run_free_reference(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Option<f64> {
+    if r.metric.is_some() || measure.error.is_some() {
+        return None;
+    }
+    reference_value(r, measure, ctx).ok()
+}
+
 fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Result<f64, String> {
     let sources = [
         r.value.is_some(),
@@ -457,6 +469,18 @@ pub fn table_value(
     row: &BTreeMap<String, String>,
     column: &str,
 ) -> Result<f64, String> {
+    let cell = table_text(path, row, column)?;
+    cell.trim()
+        .parse::<f64>()
+        .map_err(|_| format!("{}: {cell:?} is not a number", path.display()))
+}
+
+/// A CSV table's cell as written (the digits the source printed).
+pub fn table_text(
+    path: &Path,
+    row: &BTreeMap<String, String>,
+    column: &str,
+) -> Result<String, String> {
     let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let headers = rd
         .headers()
@@ -476,11 +500,7 @@ pub fn table_value(
     for rec in rd.records() {
         let rec = rec.map_err(|e| format!("{}: {e}", path.display()))?;
         if keys.iter().all(|(i, v)| rec.get(*i) == Some(v.as_str())) {
-            let cell = rec.get(col).unwrap_or("");
-            return cell
-                .trim()
-                .parse::<f64>()
-                .map_err(|_| format!("{}: {cell:?} is not a number", path.display()));
+            return Ok(rec.get(col).unwrap_or("").trim().to_string());
         }
     }
     Err(format!("{}: no row with {row:?}", path.display()))
@@ -553,5 +573,29 @@ mod tests {
         assert_eq!(interpolate(&t, &v, 1.5), 5.0);
         assert_eq!(interpolate(&t, &v, -1.0), 0.0);
         assert_eq!(interpolate(&t, &v, 3.0), 0.0);
+    }
+
+    /// A bound check whose run failed still shows its bound (the report printed "<= -").
+    #[test]
+    fn a_failed_measure_keeps_its_literal_bound() {
+        let check: CheckFile = serde_saphyr::from_str(
+            "id: balance\ntitle: t\ncompare: at_most\nmeasure: {scene: gone, metric: max_energy_balance_error}\n\
+             reference: {kind: acceptance, value: 1.0e-4, source: s}\ntolerance: {absolute: 0.0, reason: r}\n",
+        )
+        .unwrap();
+        let (results, series) = (BTreeMap::new(), BTreeMap::new());
+        let ctx = Context {
+            results: &results,
+            series: &series,
+            root: Path::new("."),
+            default_scene: None,
+        };
+        let r = evaluate(&check, &ctx);
+        assert_eq!(r.status, Status::Fail);
+        assert_eq!((r.computed, r.reference), (None, Some(1.0e-4)));
+        assert_eq!(
+            crate::check_row::CheckRow::of(&r).reference,
+            "<= 1.000000e-4"
+        );
     }
 }

@@ -7,6 +7,8 @@
 use plotters::coord::ranged1d::Ranged;
 use plotters::coord::types::RangedCoordf64;
 
+use crate::plot_style;
+
 /// One curve: legend label, (x, y) points, dashed (a reference) or solid (computed).
 pub type Series = (String, Vec<(f64, f64)>, bool);
 
@@ -112,9 +114,22 @@ pub fn tick_labels(lo: f64, hi: f64, unit: &str) -> impl Fn(&f64) -> String {
     }
 }
 
+/// What a plot shows besides its curves: a fixed y range (instead of the data's, e.g. one
+/// that does not zoom into round-off) and a shaded horizontal band (from, to, legend label).
+#[derive(Debug, Clone, Default)]
+pub struct Frame {
+    pub y_range: Option<(f64, f64)>,
+    pub band: Option<(f64, f64, String)>,
+}
+
 /// An SVG line plot (references dashed) as a string, or a note when it cannot be drawn.
 pub fn svg_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> String {
-    match try_plot(title, x, y, series) {
+    svg_plot_framed(title, x, y, series, &Frame::default())
+}
+
+/// [`svg_plot`] with the y range and band of `frame`.
+pub fn svg_plot_framed(title: &str, x: Axis, y: Axis, series: &[Series], frame: &Frame) -> String {
+    match try_plot(title, x, y, series, frame) {
         Ok(s) => s,
         Err(e) => format!("<p class=\"small\">plot {title:?} not drawn: {e}</p>"),
     }
@@ -184,20 +199,73 @@ fn bounds(series: &[Series]) -> Result<(f64, f64, f64, f64), String> {
     Ok((x0, x1, y0 - pad, y1 + pad))
 }
 
-fn try_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String, String> {
+/// The chart's size in pixels; the legend strip goes below it.
+const WIDTH: u32 = 560;
+const CHART_HEIGHT: u32 = 340;
+/// The plot's outer margin, pixels.
+const MARGIN: u32 = 8;
+
+/// The legend entries of `series` (and the band's), coloured by name.
+fn legend_entries(series: &[Series], frame: &Frame) -> Vec<plot_style::Entry> {
+    let names: Vec<&str> = series.iter().map(|s| s.0.as_str()).collect();
+    let mut entries: Vec<plot_style::Entry> = series
+        .iter()
+        .zip(plot_style::colours(&names))
+        .map(|(s, colour)| plot_style::Entry {
+            label: s.0.clone(),
+            colour,
+            mark: if s.2 {
+                plot_style::Mark::Dashed
+            } else {
+                plot_style::Mark::Line
+            },
+        })
+        .collect();
+    if let Some((_, _, label)) = &frame.band {
+        entries.push(plot_style::Entry {
+            label: label.clone(),
+            colour: BAND,
+            mark: plot_style::Mark::Band,
+        });
+    }
+    entries
+}
+
+/// The band's colour (drawn at 25 % opacity).
+const BAND: plotters::style::RGBColor = plotters::style::RGBColor(0x80, 0x80, 0x80);
+
+fn try_plot(
+    title: &str,
+    x: Axis,
+    y: Axis,
+    series: &[Series],
+    frame: &Frame,
+) -> Result<String, String> {
     use plotters::prelude::*;
-    let (x0, x1, y0, y1) = bounds(series)?;
+    let (x0, x1, mut y0, mut y1) = bounds(series)?;
+    if let Some((lo, hi)) = frame.y_range {
+        (y0, y1) = (lo, hi);
+    }
     let xfmt = tick_labels(x0, x1, x.unit);
     let yfmt = tick_labels(y0, y1, y.unit);
     // A long title gets a smaller font rather than running off the plot.
     let title_size = (15.0f64).min(1000.0 / title.chars().count().max(1) as f64);
+    let entries = legend_entries(series, frame);
+    let labels: Vec<&str> = entries.iter().map(|e| e.label.as_str()).collect();
+    let legend_width = WIDTH - 2 * MARGIN;
+    let legend_height = plot_style::layout(&labels, legend_width).1;
     let mut text = String::new();
+    let area;
     {
-        let root = SVGBackend::with_string(&mut text, (560, 340)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut text, (WIDTH, CHART_HEIGHT + legend_height + MARGIN))
+                .into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let mut chart = ChartBuilder::on(&root)
+        // The chart above, the legend's strip below: the legend never covers the data.
+        let (chart_area, _) = root.split_vertically(CHART_HEIGHT);
+        let mut chart = ChartBuilder::on(&chart_area)
             .caption(title, ("sans-serif", title_size.max(9.0)))
-            .margin(8)
+            .margin(MARGIN)
             .margin_right(30)
             .x_label_area_size(34)
             .y_label_area_size(76)
@@ -213,21 +281,25 @@ fn try_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String, 
             .y_label_formatter(&yfmt)
             .draw()
             .map_err(|e| e.to_string())?;
-        for (i, (label, data, dashed)) in series.iter().enumerate() {
-            let color = Palette99::pick(i).to_rgba();
+        if let Some((lo, hi, _)) = &frame.band {
+            chart
+                .draw_series(std::iter::once(Rectangle::new(
+                    [(x0, lo.max(y0)), (x1, hi.min(y1))],
+                    BAND.mix(0.25).filled(),
+                )))
+                .map_err(|e| e.to_string())?;
+        }
+        for ((_, data, dashed), entry) in series.iter().zip(&entries) {
+            let color = entry.colour.to_rgba();
             let data: Vec<(f64, f64)> = downsample(data, 1200);
             if *dashed {
                 chart
                     .draw_series(DashedLineSeries::new(data, 6, 4, color.stroke_width(2)))
-                    .map_err(|e| e.to_string())?
-                    .label(label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+                    .map_err(|e| e.to_string())?;
             } else {
                 chart
                     .draw_series(LineSeries::new(data.clone(), color.stroke_width(1)))
-                    .map_err(|e| e.to_string())?
-                    .label(label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color));
+                    .map_err(|e| e.to_string())?;
                 if data.len() <= 12 {
                     chart
                         .draw_series(data.iter().map(|p| Circle::new(*p, 3, color.filled())))
@@ -235,16 +307,14 @@ fn try_plot(title: &str, x: Axis, y: Axis, series: &[Series]) -> Result<String, 
                 }
             }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 11))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        area = chart.plotting_area().get_pixel_range();
         root.present().map_err(|e| e.to_string())?;
     }
-    Ok(text)
+    let legend = plot_style::legend_svg(&entries, MARGIN, CHART_HEIGHT, legend_width);
+    Ok(plot_style::append(
+        &text,
+        &(plot_style::data_area(area.0, area.1) + &legend),
+    ))
 }
 
 fn downsample(d: &[(f64, f64)], n: usize) -> Vec<(f64, f64)> {
@@ -353,5 +423,45 @@ mod tests {
         );
         assert!(panels[2].0.contains("the smallest curves") && panels[2].1.contains("plastic"));
         assert!(!panels[2].1.contains("pulse"));
+    }
+
+    #[test]
+    fn the_legend_sits_below_the_data_area_never_on_it() {
+        // Eight curves with long names: the old legend (plotters' own, inside the chart's
+        // upper right) covered a third of the data area.
+        let series: Vec<Series> = (0..8)
+            .map(|k| {
+                let d = (0..40).map(|i| (i as f64, (k * i) as f64)).collect();
+                (
+                    format!("ref: reference-data/curve-{k}/history"),
+                    d,
+                    k % 2 == 0,
+                )
+            })
+            .collect();
+        let axis = Axis::new("time", "s");
+        let svg = svg_plot("eight curves", axis, axis, &series);
+        let data = plot_style::marked_rect(&svg, "data-area").expect("data area marked");
+        let legend = plot_style::marked_rect(&svg, "legend-box").expect("legend marked");
+        assert!(!plot_style::overlap(data, legend), "{data:?} {legend:?}");
+        assert!(legend[1] >= CHART_HEIGHT as f64, "{legend:?}");
+        // Inside the picture: its height covers the legend.
+        let height: f64 = svg
+            .split("height=\"")
+            .nth(1)
+            .and_then(|h| h.split('"').next())
+            .and_then(|h| h.parse().ok())
+            .unwrap();
+        assert!(legend[1] + legend[3] <= height, "{legend:?} in {height}");
+        // Every label is in the legend, and a dashed curve's sample is dashed.
+        assert!(svg.contains("ref: reference-data/curve-7/history"));
+        assert!(svg.contains("stroke-dasharray=\"6,4\""));
+        // A band gets its own legend entry.
+        let frame = Frame {
+            y_range: Some((-17.0, -6.0)),
+            band: Some((-17.0, -12.0, "round-off".into())),
+        };
+        let svg = svg_plot_framed("band", axis, axis, &series[..1], &frame);
+        assert!(svg.contains(">round-off</text>"), "{svg}");
     }
 }

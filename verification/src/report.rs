@@ -189,6 +189,7 @@ pub fn write_report_with(
         .get_template("md")?
         .render(minijinja::Value::from_serialize(&ctx))?;
     let _ = jinja;
+    let html = crate::html_tokens::keep_tokens_whole(&html);
     std::fs::write(out.join("index.html"), html)?;
     std::fs::write(out.join("report.md"), md)?;
     Ok(vec![out.join("index.html"), out.join("report.md")])

@@ -19,6 +19,43 @@ fn short(x: Option<f64>) -> String {
     x.map_or("-".into(), |v| format!("{v:.4}"))
 }
 
+/// Decimals of a number as the paper printed it ("2394" 0, "-1.903" 3).
+fn decimals(printed: &str) -> usize {
+    printed.split_once('.').map_or(0, |(_, d)| d.len())
+}
+
+/// A computed value with as many decimals as the paper's printed value beside it has, and one
+/// more (the paper's last digit is rounded; ours shows where it would round).
+fn like_paper(x: Option<f64>, printed: Option<&str>) -> String {
+    match (x, printed) {
+        (Some(v), Some(p)) => format!("{v:.*}", decimals(p) + 1),
+        _ => short(x),
+    }
+}
+
+/// The check of Table 1's case with this id, as the report's cells show it: its tolerance
+/// and verdict (OK, FAIL, FAIL* for a declared known failure, XPASS), or that none checks
+/// this cell.
+fn check_cell(case: &Option<serde_json::Value>, id: Option<&str>) -> serde_json::Value {
+    let found = id.and_then(|id| {
+        case.as_ref()?["checks"]
+            .as_array()?
+            .iter()
+            .find(|k| k["id"] == id)
+            .and_then(|k| serde_json::from_value::<crate::check::CheckResult>(k.clone()).ok())
+    });
+    match found {
+        Some(k) => {
+            let v = crate::verdict::Verdict::of_check(&k).label();
+            serde_json::json!({"tol": format!("tolerance {}", k.tolerance), "status": v,
+                "class": v.replace('*', "K"), "known": k.known_failure.is_some()})
+        }
+        None => {
+            serde_json::json!({"tol": "no check of its own", "status": "", "class": "", "known": false})
+        }
+    }
+}
+
 /// A case's `report:` block as results.json holds it (None when it declares none).
 pub fn declared(case: &serde_json::Value) -> Option<ReportSpec> {
     serde_json::from_value(case.get("report")?.clone()).ok()
@@ -65,6 +102,80 @@ pub fn reading_context(results: &serde_json::Value) -> serde_json::Value {
     })
 }
 
+/// Table 1's rows: (paper quantity, label, metric, scale to the paper's unit, the ids of the
+/// checks of the cells: elastic, elasto-plastic, ratio).
+type Table1Row = (
+    &'static str,
+    &'static str,
+    &'static str,
+    f64,
+    [Option<&'static str>; 3],
+);
+const TABLE1_ROWS: [Table1Row; 6] = [
+    (
+        "impulse",
+        "Impulse (N s)",
+        "impulse_Ns",
+        1.0,
+        [None, Some("impulse-plastic"), Some("ratio-impulse")],
+    ),
+    (
+        "max_contact_load",
+        "Max. contact load (kN)",
+        "peak_contact_force_N",
+        1e-3,
+        [
+            Some("peak-force-elastic"),
+            Some("peak-force-plastic"),
+            Some("ratio-peak-force"),
+        ],
+    ),
+    (
+        "max_plate_displacement",
+        "Max. displacement (mm)",
+        "max_plate_displacement_m",
+        1e3,
+        [
+            Some("max-displacement-elastic"),
+            Some("max-displacement-plastic"),
+            Some("ratio-displacement"),
+        ],
+    ),
+    (
+        "contact_duration",
+        "Contact duration (ms)",
+        "contact_duration_s",
+        1e3,
+        [
+            Some("duration-elastic"),
+            Some("duration-plastic"),
+            Some("ratio-duration"),
+        ],
+    ),
+    (
+        "impactor_final_velocity",
+        "Final impactor velocity (m/s)",
+        "final_impactor_velocity_mps",
+        1.0,
+        [
+            None,
+            Some("final-velocity-plastic"),
+            Some("ratio-final-velocity"),
+        ],
+    ),
+    (
+        "max_effective_stress_point_a",
+        "Max. von Mises at A (MPa)",
+        "max_von_mises_Pa.A",
+        1e-6,
+        [
+            Some("stress-A-elastic"),
+            Some("stress-A-plastic"),
+            Some("ratio-stress-A"),
+        ],
+    ),
+];
+
 /// Table 1 and Table 2 rows: the paper's printed values next to the computed ones.
 pub fn paper_tables(
     results: &serde_json::Value,
@@ -78,50 +189,26 @@ pub fn paper_tables(
     let t1 = find(PaperTable::PaperTable1);
     let path1 = root.join("reference-data/paper/table1.csv");
     let mut table1 = Vec::new();
-    let rows1 = [
-        ("impulse", "Impulse (N s)", "impulse_Ns", 1.0),
-        (
-            "max_contact_load",
-            "Max. contact load (kN)",
-            "peak_contact_force_N",
-            1e-3,
-        ),
-        (
-            "max_plate_displacement",
-            "Max. displacement (mm)",
-            "max_plate_displacement_m",
-            1e3,
-        ),
-        (
-            "contact_duration",
-            "Contact duration (ms)",
-            "contact_duration_s",
-            1e3,
-        ),
-        (
-            "impactor_final_velocity",
-            "Final impactor velocity (m/s)",
-            "final_impactor_velocity_mps",
-            1.0,
-        ),
-        (
-            "max_effective_stress_point_a",
-            "Max. von Mises at A (MPa)",
-            "max_von_mises_Pa.A",
-            1e-6,
-        ),
-    ];
-    for (q, label, key, scale) in rows1 {
+    for (q, label, key, scale, ids) in TABLE1_ROWS {
         let mut sel = std::collections::BTreeMap::new();
         sel.insert("quantity".to_string(), q.to_string());
-        let p = |col: &str| crate::check::table_value(&path1, &sel, col).ok();
+        let printed = |col: &str| crate::check::table_text(&path1, &sel, col).ok();
+        let (pe, pp, pr) = (
+            printed("elastic"),
+            printed("elasto_plastic"),
+            printed("ratio_ep_e"),
+        );
+        let value = |p: &Option<String>| p.as_deref().and_then(|p| p.parse::<f64>().ok());
         let ce = metric(&t1, "elastic", key).map(|v| v * scale);
         let cp = metric(&t1, "plastic", key).map(|v| v * scale);
-        let (pe, pp) = (p("elastic"), p("elasto_plastic"));
+        let cr = cp.zip(ce).map(|(a, b)| a / b);
+        let dash = || "-".to_string();
         table1.push(serde_json::json!({
-            "label": label, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
-            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp),
-            "pr": short(p("ratio_ep_e")), "cr": short(cp.zip(ce).map(|(a, b)| a / b)),
+            "label": label,
+            "pe": pe.clone().unwrap_or_else(dash), "ce": like_paper(ce, pe.as_deref()), "de": rel(ce, value(&pe)),
+            "pp": pp.clone().unwrap_or_else(dash), "cp": like_paper(cp, pp.as_deref()), "dp": rel(cp, value(&pp)),
+            "pr": pr.clone().unwrap_or_else(dash), "cr": like_paper(cr, pr.as_deref()), "dr": rel(cr, value(&pr)),
+            "ke": check_cell(&t1, ids[0]), "kp": check_cell(&t1, ids[1]), "kr": check_cell(&t1, ids[2]),
         }));
     }
     let t2 = find(PaperTable::PaperTable2);
@@ -131,6 +218,7 @@ pub fn paper_tables(
         let mut sel = std::collections::BTreeMap::new();
         sel.insert("initial_velocity_mps".to_string(), v.to_string());
         let p = |col: &str| crate::check::table_value(&path2, &sel, col).ok();
+        let printed = |col: &str| crate::check::table_text(&path2, &sel, col).ok();
         let ce = metric(&t2, &format!("elastic-v{v}"), "impulse_Ns");
         let cp = metric(&t2, &format!("plastic-v{v}"), "impulse_Ns");
         let id = [format!("elastic-v{v}"), format!("plastic-v{v}")]
@@ -142,10 +230,52 @@ pub fn paper_tables(
             })
             .fold(None, |a: Option<f64>, b| Some(a.map_or(b, |a| a.max(b))));
         let (pe, pp) = (p("elastic_impulse_Ns"), p("ep_impulse_Ns"));
+        let (tpe, tpp) = (printed("elastic_impulse_Ns"), printed("ep_impulse_Ns"));
         table2.push(serde_json::json!({
-            "v": v, "pe": short(pe), "ce": short(ce), "de": rel(ce, pe),
-            "pp": short(pp), "cp": short(cp), "dp": rel(cp, pp), "id": num(id),
+            "v": v, "pe": tpe.clone().unwrap_or_else(|| "-".into()), "ce": like_paper(ce, tpe.as_deref()), "de": rel(ce, pe),
+            "pp": tpp.clone().unwrap_or_else(|| "-".into()), "cp": like_paper(cp, tpp.as_deref()), "dp": rel(cp, pp), "id": num(id),
         }));
     }
     (table1, table2)
+}
+
+#[cfg(test)]
+mod tests {
+    //! Table 1's cells: the paper's value as printed (the old cells printed "2394.0000" for
+    //! the paper's 2394), ours to one more decimal, and each cell's check with its tolerance
+    //! and verdict (a declared known failure FAIL*).
+    use super::*;
+
+    #[test]
+    fn computed_values_follow_the_papers_digits() {
+        assert_eq!(decimals("2394"), 0);
+        assert_eq!(decimals("-1.903"), 3);
+        assert_eq!(like_paper(Some(2220.2266), Some("2394")), "2220.2");
+        assert_eq!(like_paper(Some(-1.82543), Some("-1.903")), "-1.8254");
+        assert_eq!(like_paper(Some(0.5), None), "0.5000");
+    }
+
+    #[test]
+    fn cells_show_their_checks_tolerance_and_verdict() {
+        let k = |id: &str, status: &str, known: bool| {
+            serde_json::json!({"id": id, "title": "t", "status": status, "computed": 1.0,
+                "reference": 1.0, "error": 0.0, "error_kind": "relative", "compare": "within",
+                "tolerance": "rel 1.0e-1", "tolerance_reason": "r", "reference_kind": "calibration",
+                "reference_source": "s", "message": "",
+                "known_failure": if known { serde_json::json!("why") } else { serde_json::json!(null) }})
+        };
+        let case = Some(
+            serde_json::json!({"checks": [k("peak-force-plastic", "FAIL", true),
+            k("peak-force-elastic", "OK", false)]}),
+        );
+        let star = check_cell(&case, Some("peak-force-plastic"));
+        assert_eq!(star["status"], "FAIL*");
+        assert_eq!(star["class"], "FAILK");
+        assert_eq!(star["tol"], "tolerance rel 1.0e-1");
+        assert_eq!(
+            check_cell(&case, Some("peak-force-elastic"))["status"],
+            "OK"
+        );
+        assert_eq!(check_cell(&case, None)["tol"], "no check of its own");
+    }
 }

@@ -6,11 +6,25 @@
 
 use std::path::Path;
 
-use crate::plot::{column_axis, quantity_of, svg_panels, svg_plot, Axis, Series};
+use crate::plot::{
+    column_axis, quantity_of, svg_panels, svg_plot, svg_plot_framed, Axis, Frame, Series,
+};
 
 /// A change smaller than this fraction of the values is round-off (about 1e4 machine
 /// epsilons): no order can be read from it.
 const ROUND_OFF: f64 = 1e-12;
+
+/// The y axis of a round-off plot, log10 of the relative change: from below machine epsilon
+/// (2.2e-16, log10 -15.7; an exact zero change is drawn there) to four decades above the
+/// round-off level, so that round-off sits in its band at the bottom and does not fill the axis.
+const ROUND_OFF_AXIS: (f64, f64) = (-17.0, -8.0);
+
+/// The two finest triplets' observed orders agree when they differ by at most this fraction
+/// of the finest one: then the series shows an order (coarser triplets may still be
+/// pre-asymptotic, as the rigid target's 2.39, 1.93, 1.94). Looser than the GCI's 10 % band
+/// around a formal order (crate::gci), since here no formal order is known; the series the
+/// report showed "p = 0.68 (triplets 0.08, 0.68)" for differ by 88 %.
+pub const ORDER_AGREEMENT: f64 = 0.2;
 
 /// (title, svg) of each plot of the case `c` (a case of results.json), its histories read
 /// from `runs/<suite>/<case>/`, references from the repository `root`.
@@ -173,6 +187,58 @@ pub fn round_off_change(f: &[f64]) -> Option<f64> {
     (rel <= ROUND_OFF).then_some(rel)
 }
 
+/// The observed order a series shows, from its triplets' orders (coarse to fine; the series
+/// monotone, as crate::gci::assess demands): the finest triplet's, when there are at least
+/// two triplets and the two finest agree within [`ORDER_AGREEMENT`] (a single triplet fits
+/// any three values exactly, so it shows nothing). Else why not, in words for the title.
+pub fn shown_order(orders: &[f64]) -> Result<f64, String> {
+    let listed: Vec<String> = orders.iter().map(|p| format!("{p:.2}")).collect();
+    let listed = listed.join(", ");
+    let Some(&finest) = orders.last() else {
+        return Err("no observed order: no triplet".into());
+    };
+    if orders.len() < 2 {
+        return Err(format!(
+            "no observed order: one triplet only ({listed}), two that agree are needed"
+        ));
+    }
+    let off = (orders[orders.len() - 2] - finest).abs();
+    if !(finest > 0.0 && off <= ORDER_AGREEMENT * finest) {
+        return Err(format!(
+            "no observed order: triplets {listed}, the two finest differ by more than {:.0} %",
+            100.0 * ORDER_AGREEMENT
+        ));
+    }
+    Ok(finest)
+}
+
+/// The plot of a series whose changes are at round-off level: log10 of each level's change
+/// against the finest level, relative to the finest value, on a fixed axis with the
+/// round-off band shaded (an exact zero drawn at machine epsilon).
+fn round_off_plot(title: String, x: Axis, log_h: &[f64], f: &[f64]) -> (String, String) {
+    let finest = f[f.len() - 1];
+    let pts: Vec<(f64, f64)> = log_h
+        .iter()
+        .zip(f)
+        .take(f.len() - 1)
+        .map(|(h, v)| {
+            let rel = ((v - finest) / finest).abs().max(f64::EPSILON);
+            (*h, rel.log10())
+        })
+        .collect();
+    let frame = Frame {
+        y_range: Some(ROUND_OFF_AXIS),
+        band: Some((
+            ROUND_OFF_AXIS.0,
+            ROUND_OFF.log10(),
+            format!("round-off (change below {ROUND_OFF:.0e} of the value)"),
+        )),
+    };
+    let y = Axis::new("log10 |f / f_finest - 1|", "");
+    let svg = svg_plot_framed(&title, x, y, &[("runs".into(), pts, false)], &frame);
+    (title, svg)
+}
+
 /// One plot per metric of the series `name`: log10 |f - f_extrapolated| against log10 of the
 /// refined size with the observed order's slope; the values themselves when the order cannot
 /// be read (not asymptotic, or changes at round-off level).
@@ -208,24 +274,29 @@ fn convergence_plots(name: &str, sd: &serde_json::Value) -> Vec<(String, String)
             (title, svg)
         };
         if let Some(rel) = round_off_change(&f) {
-            out.push(values_plot(format!("{name}: {label} changes only at round-off level (largest change {rel:.1e} of the value): no order")));
+            let title = format!("{name}: {label} changes only at round-off level (largest change {rel:.1e} of the value): no order");
+            out.push(round_off_plot(title, x, &log_h, &f));
             continue;
         }
         let r = levels[n - 1] / levels[n - 2];
-        let assessed = crate::gci::assess(&f, r, None)
-            .ok()
-            .map(|a| (a.finest_order(), a.orders))
-            .filter(|(p, _)| p.is_finite() && *p > 0.0);
-        let Some((p, orders)) = assessed else {
+        let Ok(assessed) = crate::gci::assess(&f, r, None) else {
             out.push(values_plot(format!(
                 "{name}: {label}, not in the asymptotic range (no order)"
             )));
             continue;
         };
-        let all: Vec<String> = orders.iter().map(|p| format!("{p:.2}")).collect();
+        let p = match shown_order(&assessed.orders) {
+            Ok(p) => p,
+            Err(why) => {
+                out.push(values_plot(format!("{name}: {label}, {why}")));
+                continue;
+            }
+        };
+        let all: Vec<String> = assessed.orders.iter().map(|p| format!("{p:.2}")).collect();
         let title = format!(
-            "{name}: {label}, observed order p = {p:.2} (triplets coarse to fine: {})",
-            all.join(", ")
+            "{name}: {label}, observed order p = {p:.2} (triplets coarse to fine: {}; the two finest within {:.0} %)",
+            all.join(", "),
+            100.0 * ORDER_AGREEMENT
         );
         let f_ext = f[n - 1] + (f[n - 1] - f[n - 2]) / (r.powf(p) - 1.0);
         let pts: Vec<(f64, f64)> = log_h
@@ -250,8 +321,10 @@ fn convergence_plots(name: &str, sd: &serde_json::Value) -> Vec<(String, String)
 
 #[cfg(test)]
 mod tests {
-    //! Convergence plots (issue 13): no observed order for changes at round-off level (the old
-    //! titles printed p = -3.72 for them), and dt studies are named for the time step.
+    //! Convergence plots: no observed order for changes at round-off level (the old titles
+    //! printed p = -3.72 for them; now drawn on a fixed axis with the round-off band), none
+    //! from triplets that disagree (the old titles printed the finest triplet's), and dt
+    //! studies are named for the time step.
     use super::*;
 
     #[test]
@@ -269,10 +342,52 @@ mod tests {
             plots[0].0
         );
         assert!(!plots[0].0.contains("order p ="), "{}", plots[0].0);
+        // Drawn on the fixed round-off axis with its band, not zoomed into the noise.
+        assert!(plots[0]
+            .1
+            .contains("round-off (change below 1e-12 of the value)"));
+        assert!(plots[0].1.contains("log10 |f / f_finest - 1|"));
         assert!(plots[0]
             .1
             .contains("log10 (time step / coarsest time step)"));
         assert!(!plots[0].1.contains("h_base"));
+    }
+
+    #[test]
+    fn an_order_is_printed_only_when_the_triplets_agree() {
+        // The report printed "p = 0.68 (triplets 0.08, 0.68)": the finest triplet alone.
+        let e = shown_order(&[0.08, 0.68]).unwrap_err();
+        assert_eq!(
+            e,
+            "no observed order: triplets 0.08, 0.68, the two finest differ by more than 20 %"
+        );
+        assert!(shown_order(&[1.28])
+            .unwrap_err()
+            .contains("one triplet only (1.28)"));
+        assert_eq!(shown_order(&[1.97, 1.97, 1.98]), Ok(1.98));
+        // A pre-asymptotic coarsest triplet (the rigid target's): the two finest agree.
+        assert_eq!(shown_order(&[2.39, 1.93, 1.94]), Ok(1.94));
+        assert!(shown_order(&[1.94, 0.9, 1.94]).is_err());
+        // 2.39 against 1.94: 23 % off, no order; 2.2 against 1.94: 13 %, the order.
+        assert!(shown_order(&[2.39, 1.94]).is_err());
+        assert_eq!(shown_order(&[2.2, 1.94]), Ok(1.94));
+        // A series with the triplets 0.08 and 0.68 gets the values plot and no order.
+        let r: f64 = 2.0;
+        let (p1, p2) = (0.08, 0.68);
+        let d1 = 1.0;
+        let d2 = d1 / r.powf(p1);
+        let d3 = d2 / r.powf(p2);
+        let f = [0.0, d1, d1 + d2, d1 + d2 + d3];
+        let sd = serde_json::json!({"refine": "mesh", "levels": [1.0, 2.0, 4.0, 8.0],
+            "metrics": {"impulse_Ns": f}});
+        let plots = convergence_plots("mesh", &sd);
+        assert!(
+            plots[0]
+                .0
+                .contains("no observed order: triplets 0.08, 0.68"),
+            "{}",
+            plots[0].0
+        );
     }
 
     #[test]
@@ -296,7 +411,7 @@ mod tests {
         assert!(
             plots[0]
                 .0
-                .contains("max plate displacement, observed order p = 2.00"),
+                .contains("max plate displacement, observed order p = 2.00 (triplets coarse to fine: 2.00, 2.00; the two finest within 20 %)"),
             "{}",
             plots[0].0
         );
