@@ -163,7 +163,7 @@ fn the_axisymmetric_geometry_names_what_it_cannot_run_with() {
         ],
     );
     let e = error_for(|s| format!("{s}geometry: axisymmetric\n"));
-    assert_mentions(&e, &["bad.yaml:23:11", "geometry", "contact: surface"]);
+    assert_mentions(&e, &["bad.yaml:26:11", "geometry", "contact: surface"]);
     let e = error_for(|s| {
         format!(
             "{}geometry: axisymmetric\n",

@@ -240,10 +240,6 @@ impl<F: RingElement> Axisymmetric<F> {
         let ring = self.ring::<f64>(e);
         std::array::from_fn(|a| density * f64::of_batch(&ring.mass[a], e))
     }
-
-    fn ring_bytes(&self) -> usize {
-        self.plane.heap_bytes() + self.ring.heap_bytes()
-    }
 }
 
 impl RingElement for FullQ4 {
@@ -269,15 +265,31 @@ impl RingElement for OnePointQ4 {
     }
 }
 
+/// The [`Formulation`] items every ring element shares: the plane element's connectivity,
+/// the ring's volume (the sum of its Gauss weights), row-sum masses and storage.
+macro_rules! ring_bookkeeping {
+    () => {
+        fn connectivity(&self) -> &[[u32; 4]] {
+            self.plane.connectivity()
+        }
+        fn volume(&self, e: usize) -> f64 {
+            self.ring_weights::<f64>(e).iter().sum()
+        }
+        fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
+            self.ring_masses(e, density)
+        }
+        fn heap_bytes(&self) -> usize {
+            self.plane.heap_bytes() + self.ring.heap_bytes()
+        }
+    };
+}
+
 /// No element stiffness matrices in the axisymmetric geometry: their product drops node 0's
 /// columns as a rigid translation ([`crate::kernels::stiffness`]), and a radial translation of a
 /// ring strains it (`eps_theta = u_r / r`).
 impl Formulation for Axisymmetric<FullQ4> {
     const POINTS: usize = 4;
     const STIFFNESS_MATRIX_PAYS: bool = false;
-    fn connectivity(&self) -> &[[u32; 4]] {
-        self.plane.connectivity()
-    }
     #[inline(always)]
     fn strain<R: Real>(&self, at: usize, p: usize, u: &Vector<R>, shared: R) -> [R; 4] {
         let s = self.plane.strain(at, p, u, shared);
@@ -305,23 +317,12 @@ impl Formulation for Axisymmetric<FullQ4> {
         self.plane.points::<R>(at)[p].add_divergence(at, w, s, f);
         ring.add_hoop_forces(p, at, w * s[2], f);
     }
-    fn volume(&self, e: usize) -> f64 {
-        self.ring_weights::<f64>(e).iter().sum()
-    }
-    fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
-        self.ring_masses(e, density)
-    }
-    fn heap_bytes(&self) -> usize {
-        self.ring_bytes()
-    }
+    ring_bookkeeping!();
 }
 
 impl Formulation for Axisymmetric<SelectiveQ4> {
     const POINTS: usize = 4;
     const STIFFNESS_MATRIX_PAYS: bool = false;
-    fn connectivity(&self) -> &[[u32; 4]] {
-        self.plane.connectivity()
-    }
     /// The element's mean dilatation, hoop strain included.
     #[inline(always)]
     fn shared<R: Real>(&self, at: usize, u: &Vector<R>) -> R {
@@ -367,23 +368,12 @@ impl Formulation for Axisymmetric<SelectiveQ4> {
     fn finish_forces<R: Real>(&self, at: usize, mean_total: R, f: &mut Vector<R>) {
         self.ring::<R>(at).add_dilatation_forces(at, mean_total, f);
     }
-    fn volume(&self, e: usize) -> f64 {
-        self.ring_weights::<f64>(e).iter().sum()
-    }
-    fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
-        self.ring_masses(e, density)
-    }
-    fn heap_bytes(&self) -> usize {
-        self.ring_bytes()
-    }
+    ring_bookkeeping!();
 }
 
 impl Formulation for Axisymmetric<OnePointQ4> {
     const POINTS: usize = 1;
     const STIFFNESS_MATRIX_PAYS: bool = false;
-    fn connectivity(&self) -> &[[u32; 4]] {
-        self.plane.connectivity()
-    }
     /// The element's mean strain (hoop included).
     #[inline(always)]
     fn strain<R: Real>(&self, at: usize, _: usize, u: &Vector<R>, _: R) -> [R; 4] {
@@ -420,13 +410,5 @@ impl Formulation for Axisymmetric<OnePointQ4> {
     fn hourglass_energy<R: Real>(&self, at: usize, u: &Vector<R>) -> R {
         self.plane.hourglass_energy(at, u)
     }
-    fn volume(&self, e: usize) -> f64 {
-        self.weights::<f64>(e)[0]
-    }
-    fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
-        self.ring_masses(e, density)
-    }
-    fn heap_bytes(&self) -> usize {
-        self.ring_bytes()
-    }
+    ring_bookkeeping!();
 }

@@ -14,6 +14,7 @@ use impact_solver::scene::{ElementKind, DEFAULT_HOURGLASS};
 use impact_solver::with_formulation;
 
 use super::{element_kind, p_str, Params};
+use crate::code_verification::driver::distorted_patch;
 use crate::data::RunData;
 
 pub(super) fn formulation(
@@ -51,24 +52,6 @@ fn assemble<F: Formulation>(
         }
     }
     (out, stress_err)
-}
-
-/// A distorted 2x2 patch on [0, 0.02]^2: edge mid-nodes moved along the edges, the interior
-/// node moved off-centre (MacNeal-Harder style). Node 4 is the only interior (free) node.
-fn distorted_patch() -> Mesh {
-    let coords = vec![
-        [0.0, 0.0],
-        [0.0085, 0.0],
-        [0.02, 0.0],
-        [0.0, 0.0115],
-        [0.0123, 0.0082],
-        [0.02, 0.0093],
-        [0.0, 0.02],
-        [0.0106, 0.02],
-        [0.02, 0.02],
-    ];
-    let elements = vec![[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]];
-    Mesh { coords, elements }
 }
 
 pub(super) fn patch(p: &Params) -> Result<RunData, String> {

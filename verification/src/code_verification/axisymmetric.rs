@@ -34,8 +34,9 @@ use impact_solver::scene::{ElementKind, Hardening, Material, Plasticity};
 use serde_json::Value;
 
 use super::collapse::{march, plateau, Push};
-use super::driver::mapped_mesh;
+use super::driver::{distorted_patch, mapped_mesh};
 use super::space_time::element;
+use super::thick_cylinder::pressure_history;
 use super::{param, with_history};
 use crate::data::RunData;
 
@@ -85,24 +86,6 @@ where
     Axisymmetric<F>: Formulation,
 {
     Axisymmetric::<F>::new(mesh, axis, KAPPA, p_modulus).map_err(|e| e.to_string())
-}
-
-/// The distorted 2 x 2 patch on `[0, 20 mm]^2` of the plane patch test (node 4 the only
-/// interior node).
-fn distorted_patch() -> Mesh {
-    let coords = vec![
-        [0.0, 0.0],
-        [0.0085, 0.0],
-        [0.02, 0.0],
-        [0.0, 0.0115],
-        [0.0123, 0.0082],
-        [0.02, 0.0093],
-        [0.0, 0.02],
-        [0.0106, 0.02],
-        [0.02, 0.02],
-    ];
-    let elements = vec![[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]];
-    Mesh { coords, elements }
 }
 
 /// The patch test about the axis at `axis` (m): (free-node force / largest force, largest
@@ -326,15 +309,7 @@ pub fn axisymmetric(p: &Params) -> Result<RunData, String> {
     m.insert("lame_order".into(), (errors[2] / errors[3]).log2());
     let (ratio, rows) = limit(kind, plane, nr)?;
     m.insert("limit_pressure_ratio".into(), ratio);
-    let history = impact_solver::History {
-        columns: vec![
-            "time_s".into(),
-            "pressure_Pa".into(),
-            "inner_displacement_m".into(),
-        ],
-        values: rows.iter().flat_map(|r| r.iter().copied()).collect(),
-    };
-    Ok(with_history(m, history))
+    Ok(with_history(m, pressure_history(&rows)))
 }
 
 #[cfg(test)]

@@ -186,3 +186,21 @@ pub fn weighted_l2(x: &[f64], mass: &[f64], f: impl Fn(usize, f64) -> f64) -> f6
         .sum::<f64>()
         .sqrt()
 }
+
+/// A distorted 2x2 patch on [0, 0.02]^2: edge mid-nodes moved along the edges, the interior
+/// node moved off-centre (MacNeal-Harder style). Node 4 is the only interior (free) node.
+pub fn distorted_patch() -> Mesh {
+    let coords = vec![
+        [0.0, 0.0],
+        [0.0085, 0.0],
+        [0.02, 0.0],
+        [0.0, 0.0115],
+        [0.0123, 0.0082],
+        [0.02, 0.0093],
+        [0.0, 0.02],
+        [0.0106, 0.02],
+        [0.02, 0.02],
+    ];
+    let elements = vec![[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6], [4, 5, 8, 7]];
+    Mesh { coords, elements }
+}

@@ -107,15 +107,19 @@ pub fn thick_cylinder(p: &Params) -> Result<RunData, String> {
     m.insert("limit_pressure_Pa".into(), pressure);
     m.insert("limit_pressure_closed_form_Pa".into(), limit);
     m.insert("ratio_to_closed_form".into(), pressure / limit);
-    let history = impact_solver::History {
+    Ok(with_history(m, pressure_history(&rows)))
+}
+
+/// The history of a cylinder's push: rows (time s, inner pressure Pa, inner displacement m).
+pub(super) fn pressure_history(rows: &[[f64; 3]]) -> impact_solver::History {
+    impact_solver::History {
         columns: vec![
             "time_s".into(),
             "pressure_Pa".into(),
             "inner_displacement_m".into(),
         ],
         values: rows.iter().flat_map(|r| r.iter().copied()).collect(),
-    };
-    Ok(with_history(m, history))
+    }
 }
 
 #[cfg(test)]
