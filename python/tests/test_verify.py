@@ -24,10 +24,12 @@ def test_results_equal_the_cli(cli, tmp_path):
         tmp_path / "cli" / "results.json").read_text()
     assert (tmp_path / "py" / "junit.xml").read_text() == (tmp_path / "cli" / "junit.xml").read_text()
     assert v.counts["ok"] > 0 and v.passed == (v.counts["unexpected"] == 0)
-    assert {c["suite"] for c in v.results["cases"]} == set(SUITES)
+    # The selection's impact runs bring the history invariants (summary against history.csv).
+    suites = set(SUITES) | {"invariants"}
+    assert {c["suite"] for c in v.results["cases"]} == suites
     frame = v.to_pandas()
     assert len(frame) == sum(v.counts.values())
-    assert set(frame["suite"]) == set(SUITES)
+    assert set(frame["suite"]) == suites
 
 
 def test_filter_and_errors():
