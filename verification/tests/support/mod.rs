@@ -159,7 +159,7 @@ pub fn assert_sections_present(out: &Path) {
         html.contains("<td class=\"FAIL\">missed</td>")
             && html.contains("<td class=\"OK\">met</td>")
             && html.contains("<td class=\"SKIP\">coarse</td>")
-            && html.contains("<td class=\"num\">2.0e-3</td>"),
+            && html.contains("<td class=\"num\"><span class=\"tok\">2.0e-3</span></td>"),
         "targets and statuses coloured as the report's own tables"
     );
     assert!(
