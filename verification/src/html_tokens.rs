@@ -79,10 +79,10 @@ fn breakable(word: &str) -> bool {
         .chars()
         .collect();
     // A hyphen inside a word even before a digit: Chromium breaks `1.0e-12` after its minus
-    // sign (found by the browser check), whatever UAX #14's LB25 suggests; a leading sign
-    // (`-2.5`) has nothing before it to break from.
+    // sign (found by the browser check), whatever UAX #14's LB25 suggests; a leading minus
+    // before a digit (`-2.5`) does not break, before a letter (`-Z`) it does.
     core.windows(2).enumerate().any(|(i, w)| match w[0] {
-        '-' => i > 0,
+        '-' => i > 0 || !w[1].is_ascii_digit(),
         c => "\u{2010}\u{2011}\u{2012}\u{2013}\u{2014}/)]}!?".contains(c),
     })
 }
@@ -149,7 +149,7 @@ mod tests {
             format!("<div class=\"scroll\"><table>{cell}</table></div>")
         );
         assert!(!breakable("done."));
-        assert!(breakable("1.0e-8") && !breakable("-2.5"));
+        assert!(breakable("1.0e-8") && !breakable("-2.5") && breakable("-Z"));
         assert!(!breakable("(mm)") && !breakable("s)"));
         assert!(breakable("f(x)y") && breakable("a/b"));
     }
