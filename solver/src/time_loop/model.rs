@@ -132,17 +132,34 @@ pub fn build_on<U: UseModel>(
     match scene.kinematics {
         Kinematics::Small => with_formulation!(formulation, f => with_material(f, request, user)),
         Kinematics::Finite => {
-            if kernel == Kernel::ElasticStiffnessMatrix {
-                return Err(Error::invalid(
-                    SourceLocation::file(&scene.source),
-                    "kinematics",
-                    "finite",
-                    "the stiffness-matrix kernel is a small-strain one: use the stress path",
-                ));
-            }
+            no_stiffness_matrix(
+                scene,
+                kernel,
+                ("kinematics", "finite"),
+                "the stiffness-matrix kernel is a small-strain one: use the stress path",
+            )?;
             with_formulation!(formulation, f => with_material(UpdatedLagrangian(f), request, user))
         }
     }
+}
+
+/// The refusal of the stiffness-matrix kernel where the scene's `(field, value)` rules it
+/// out (`why`: what to use instead).
+fn no_stiffness_matrix(
+    scene: &Scene,
+    kernel: Kernel,
+    (field, value): (&str, &str),
+    why: &str,
+) -> Result<()> {
+    if kernel == Kernel::ElasticStiffnessMatrix {
+        return Err(Error::invalid(
+            SourceLocation::file(&scene.source),
+            field,
+            value,
+            why,
+        ));
+    }
+    Ok(())
 }
 
 /// [`build_on`] in the axisymmetric geometry (small strain: the scene refuses it with finite
@@ -154,14 +171,7 @@ fn with_ring<U: UseModel>(
     path: KernelPath,
     user: U,
 ) -> Result<U::Output> {
-    if kernel == Kernel::ElasticStiffnessMatrix {
-        return Err(Error::invalid(
-            SourceLocation::file(&scene.source),
-            "geometry",
-            "axisymmetric",
-            "the stiffness-matrix kernel drops rigid translations, and a ring's radial translation strains it: use the stress path",
-        ));
-    }
+    no_stiffness_matrix(scene, kernel, ("geometry", "axisymmetric"), "the stiffness-matrix kernel drops rigid translations, and a ring's radial translation strains it: use the stress path")?;
     let m = &scene.material;
     let p_modulus = Elastic::new(m.youngs_modulus, m.poisson_ratio).p_modulus();
     let (axis, hourglass) = (mesh.mid_span_x(), scene.mesh.hourglass);
