@@ -11,7 +11,7 @@
 use serde::Deserialize;
 
 use crate::input::error::{Error, Result, SourceLocation};
-use crate::input::scene::{Estimate, Kinematics, Load, Model};
+use crate::input::scene::{Estimate, Load, Model};
 use serde_saphyr::Spanned;
 
 /// The section modelled: a slice of a plate of width `plate.width` (plane strain, the paper's
@@ -41,7 +41,6 @@ impl Geometry {
 /// The scene's parts the geometry must agree with.
 pub struct Choices<'a> {
     pub model: Model,
-    pub kinematics: Kinematics,
     pub load: &'a Load,
     pub estimate: Estimate,
 }
@@ -70,9 +69,6 @@ pub fn validated(
     };
     if choices.model != Model::Half {
         return refuse("axisymmetric needs mesh.model: half (the half-section from the clamped rim at x = 0 to the axis at x = length / 2)");
-    }
-    if choices.kinematics != Kinematics::Small {
-        return refuse("axisymmetric runs with kinematics: small; finite deformation is plane-strain only for now");
     }
     if choices.estimate == Estimate::Global {
         return refuse("axisymmetric runs with time.dt.estimate: element (the global estimate's stiffness products drop rigid translations, and a radial translation of a ring is not rigid)");

@@ -978,7 +978,6 @@ impl<'a> Validator<'a> {
         let output = self.output(&file.output, &plate)?;
         let choices = geometry::Choices {
             model: mesh.model,
-            kinematics: file.kinematics,
             load: &load,
             estimate: time.dt_estimate,
         };

@@ -40,7 +40,7 @@ pub struct Axisymmetric<F> {
 
 /// What the ring adds to an element's geometry, for one element (`f64`) or a batch.
 #[derive(Debug, Clone, Copy, Default)]
-struct Ring<R> {
+pub(crate) struct Ring<R> {
     /// Whole-ring weight `2 pi r det J` of each Gauss point, m^3.
     weight: [R; 4],
     /// `d eps_theta / d u_{x,a}` (= `-N_a / r`) at each Gauss point (point x node), 1/m.
@@ -127,13 +127,13 @@ impl Ring<f64> {
 /// The ring's data of `at`, read in place as the plane geometry's ([`Real::of_batch`]).
 impl Ring<Lanes> {
     #[inline(always)]
-    fn weight<R: Real>(&self, p: usize, at: usize) -> R {
+    pub(crate) fn weight<R: Real>(&self, p: usize, at: usize) -> R {
         R::of_batch(&self.weight[p], at)
     }
 
     /// `eps_theta` at Gauss point `p` of the element displacements `u`.
     #[inline(always)]
-    fn hoop_strain<R: Real>(&self, p: usize, at: usize, u: &Vector<R>) -> R {
+    pub(crate) fn hoop_strain<R: Real>(&self, p: usize, at: usize, u: &Vector<R>) -> R {
         let mut e = R::splat(0.0);
         for a in 0..4 {
             e += R::of_batch(&self.hoop[p][a], at) * u[2 * a];
@@ -144,7 +144,7 @@ impl Ring<Lanes> {
     /// Adds the hoop row's forces `d eps_theta / d u_{x,a} * ws` (`ws`: weight times the hoop
     /// stress, N m) at Gauss point `p` to `f`.
     #[inline(always)]
-    fn add_hoop_forces<R: Real>(&self, p: usize, at: usize, ws: R, f: &mut Vector<R>) {
+    pub(crate) fn add_hoop_forces<R: Real>(&self, p: usize, at: usize, ws: R, f: &mut Vector<R>) {
         for a in 0..4 {
             f[2 * a] += R::of_batch(&self.hoop[p][a], at) * ws;
         }
@@ -172,6 +172,42 @@ impl Ring<Lanes> {
             xy += dy * ux + dx * uy;
         }
         [xx, yy, hoop, xy]
+    }
+
+    /// The mean displacement gradient `[xX, xY, yX, yY]` of `u` and its mean hoop gradient
+    /// `u_r / R` (dimensionless): the one-point element's under finite deformation.
+    #[inline(always)]
+    pub(crate) fn mean_gradient<R: Real>(&self, at: usize, u: &Vector<R>) -> ([R; 4], R) {
+        let zero = R::splat(0.0);
+        let (mut g, mut hoop) = ([zero; 4], zero);
+        for a in 0..4 {
+            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
+            let (dx, dy, h) = self.mean_rows::<R>(a, at);
+            g[0] += dx * ux;
+            g[1] += dy * ux;
+            g[2] += dx * uy;
+            g[3] += dy * uy;
+            hoop += h * ux;
+        }
+        (g, hoop)
+    }
+
+    /// Adds `w P : d(mean F)/du` to `f` (N): `p` the in-plane first Piola-Kirchhoff stress
+    /// (row-major `[xX, xY, yX, yY]`, Pa), `p_theta` its hoop entry `tau_theta / F_theta`
+    /// (Pa), `w` the ring's volume (m^3).
+    #[inline(always)]
+    pub(crate) fn add_mean_piola<R: Real>(
+        &self,
+        at: usize,
+        w: R,
+        (p, p_theta): (&[R; 4], R),
+        f: &mut Vector<R>,
+    ) {
+        for a in 0..4 {
+            let (dx, dy, h) = self.mean_rows::<R>(a, at);
+            f[2 * a] += w * (p[0] * dx + p[1] * dy + p_theta * h);
+            f[2 * a + 1] += w * (p[2] * dx + p[3] * dy);
+        }
     }
 
     /// The mean dilatation `xx + yy + theta` of `u`.
@@ -224,7 +260,7 @@ impl<F: RingElement> Axisymmetric<F> {
     }
 
     #[inline(always)]
-    fn ring<R: Real>(&self, at: usize) -> &Ring<Lanes> {
+    pub(crate) fn ring<R: Real>(&self, at: usize) -> &Ring<Lanes> {
         self.ring.batch::<R>(at)
     }
 

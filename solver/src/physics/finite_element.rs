@@ -46,27 +46,36 @@ pub trait FiniteResponse: Formulation {
     ) -> (Vector<R>, Energy<R>);
 }
 
-/// One point's update from its gradient `g` (of `F_bar` for F-bar): the step from the
-/// point's memory, the material at the unrotated strain, the memory written where `active`
-/// has the lane; the response's stress is the Kirchhoff stress in the current frame, Pa
-/// (energy densities per reference volume, J/m^3), and `(I + g)^-1`.
+/// One point's update from its gradient `g` (of `F_bar` for F-bar) and, in the
+/// axisymmetric geometry, its hoop gradient `hoop` (`u_r / R`; `None` in plane strain): the
+/// step from the point's memory, the material at the unrotated strain, the memory written
+/// where `active` has the lane; the response's stress is the Kirchhoff stress in the current
+/// frame, Pa (energy densities per reference volume, J/m^3), and `(I + g)^-1`.
 #[inline(always)]
-fn point_update<M: ConstitutiveModel, R: Real>(
+pub(crate) fn point_update<M: ConstitutiveModel, R: Real>(
     material: &M,
-    g: &Gradient<R>,
+    (g, hoop): (&Gradient<R>, Option<R>),
     batch: &mut M::Batch,
     at: usize,
     active: R::Mask,
 ) -> (Response<R>, [R; 4]) {
     let memory = M::memory(batch).map_or(Memory::default(), |m| m.at::<R>(at));
-    let step = kinematics::step(&memory, g);
+    let mut step = kinematics::step(&memory, g);
+    if let Some(hoop) = hoop {
+        let before = M::memory(batch).map_or(R::splat(0.0), |m| m.hoop_at::<R>(at));
+        step.strain[2] = kinematics::hoop_strain(memory.strain[2], before, hoop);
+    }
     let mut r = material.update(&step.strain, batch, at, active);
     if let Some(m) = M::memory(batch) {
         let next = Memory {
             gradient: *g,
             strain: step.strain,
+            hoop: R::splat(0.0),
         };
         m.store(at, &next, active);
+        if let Some(hoop) = hoop {
+            m.store_hoop(at, hoop, active);
+        }
     }
     r.stress = step.rotation.apply(&r.stress);
     (r, step.inverse)
@@ -74,7 +83,11 @@ fn point_update<M: ConstitutiveModel, R: Real>(
 
 /// Adds a point's energy densities times its reference weight `w` (m^3) to `energy`.
 #[inline(always)]
-fn add_energy<M: ConstitutiveModel, R: Real>(energy: &mut Energy<R>, w: R, r: &Response<R>) {
+pub(crate) fn add_energy<M: ConstitutiveModel, R: Real>(
+    energy: &mut Energy<R>,
+    w: R,
+    r: &Response<R>,
+) {
     energy.strain += w * r.strain_energy_density;
     if M::HAS_STATES {
         energy.plastic_work += w * r.plastic_work_density;
@@ -96,7 +109,7 @@ impl FiniteResponse for FullQ4 {
             let geometry = &self.points::<R>(at)[p];
             let w = geometry.det_j::<R>(at) * self.width;
             let g = geometry.gradient(at, u);
-            let (r, inv) = point_update(material, &g, batch, at, active);
+            let (r, inv) = point_update(material, (&g, None), batch, at, active);
             add_energy::<M, R>(&mut energy, w, &r);
             geometry.add_piola(at, w, &piola(&r.stress, &inv), &mut f);
         }
@@ -131,7 +144,7 @@ impl FiniteResponse for SelectiveQ4 {
                 f_p[2] * alpha,
                 f_p[3] * alpha - 1.0,
             ];
-            let (r, inv_bar) = point_update(material, &g_bar, batch, at, active);
+            let (r, inv_bar) = point_update(material, (&g_bar, None), batch, at, active);
             add_energy::<M, R>(&mut energy, w, &r);
             let tau = r.stress;
             let mean = (tau[0] + tau[1]) * 0.5;
@@ -160,7 +173,7 @@ impl FiniteResponse for OnePointQ4 {
     ) -> (Vector<R>, Energy<R>) {
         let d = self.data.batch::<R>(at);
         let g = d.centroid.gradient(at, u);
-        let (r, inv) = point_update(material, &g, &mut batches[0], at, active);
+        let (r, inv) = point_update(material, (&g, None), &mut batches[0], at, active);
         let mut energy = Energy::<R>::default();
         add_energy::<M, R>(&mut energy, R::of_batch(&d.volume, at), &r);
         let mut f = [R::splat(0.0); 8];
@@ -219,6 +232,9 @@ impl<F: FiniteResponse> Formulation for UpdatedLagrangian<F> {
     }
     fn volume(&self, e: usize) -> f64 {
         self.0.volume(e)
+    }
+    fn nodal_masses(&self, e: usize, density: f64) -> [f64; 4] {
+        self.0.nodal_masses(e, density)
     }
     fn heap_bytes(&self) -> usize {
         self.0.heap_bytes()

@@ -59,12 +59,13 @@ impl<M: ConstitutiveModel> ConstitutiveModel for Finite<M> {
     }
 
     /// The Cauchy stress `R tau^ R^T / J` of the state (its memory holds the strain and the
-    /// gradient; `strain`, the linearised one, is not used), Pa.
+    /// gradient; `strain`, the linearised one, is not used), Pa. `J = det F (1 + u_r / R)`
+    /// with the ring's hoop stretch (1 in plane strain, where the factor is exact).
     fn stress(&self, _strain: &Strain, state: &Self::State) -> Stress {
         let m = &state.memory;
         let tau = self.0.stress(&m.strain, &state.inner);
         let f = deformation(&m.gradient);
-        let j = det(&f);
+        let j = det(&f) * (m.hoop + 1.0);
         Rotation::of_deformation(&f).apply(&tau).map(|x| x / j)
     }
 

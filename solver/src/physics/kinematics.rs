@@ -48,6 +48,10 @@ pub struct Memory<R> {
     pub gradient: Gradient<R>,
     /// The unrotated strain `e^` `[xx, yy, zz, gamma_xy]` (engineering shear).
     pub strain: [R; 4],
+    /// The hoop displacement gradient `u_r / R` of the last step in the axisymmetric
+    /// geometry (`F_theta theta - 1`, dimensionless); zero in plane strain, where it is never
+    /// read or written ([`Memory::at`] and [`Memory::store`] leave it out).
+    pub hoop: R,
 }
 
 impl Memory<Lanes> {
@@ -56,6 +60,7 @@ impl Memory<Lanes> {
         Memory {
             gradient: self.gradient.map(|x| x.0[l]),
             strain: self.strain.map(|x| x.0[l]),
+            hoop: self.hoop.0[l],
         }
     }
 
@@ -65,15 +70,30 @@ impl Memory<Lanes> {
             self.gradient[c].0[l] = m.gradient[c];
             self.strain[c].0[l] = m.strain[c];
         }
+        self.hoop.0[l] = m.hoop;
     }
 
-    /// The memory at `at` ([`Real::of_batch`]).
+    /// The memory at `at` ([`Real::of_batch`]), its `hoop` left at zero (the plane
+    /// geometry's: [`Memory::hoop_at`] reads the ring's).
     #[inline(always)]
     pub fn at<R: Real>(&self, at: usize) -> Memory<R> {
         Memory {
             gradient: four(|c| R::of_batch(&self.gradient[c], at)),
             strain: four(|c| R::of_batch(&self.strain[c], at)),
+            hoop: R::splat(0.0),
         }
+    }
+
+    /// The hoop gradient at `at`.
+    #[inline(always)]
+    pub fn hoop_at<R: Real>(&self, at: usize) -> R {
+        R::of_batch(&self.hoop, at)
+    }
+
+    /// Writes the hoop gradient `hoop` at `at` where `active` has the lane.
+    #[inline(always)]
+    pub fn store_hoop<R: Real>(&mut self, at: usize, hoop: R, active: R::Mask) {
+        R::store(&mut self.hoop, at, hoop, active);
     }
 
     /// Writes `m` at `at` where `active` has the lane.
@@ -221,6 +241,16 @@ pub fn step<R: Real>(memory: &Memory<R>, g: &Gradient<R>) -> Step<R> {
     }
 }
 
+/// The unrotated hoop strain after a step of the hoop gradient from `before` to `after`
+/// (`u_r / R`, dimensionless), from the one `e_zz` before it: the same midpoint rule as
+/// [`step`], `d_theta theta dt = dF / F_mid` with `F = 1 + u_r / R`. The hoop direction is a
+/// principal direction that never rotates, so this is the Green-Naghdi increment too.
+#[inline(always)]
+pub fn hoop_strain<R: Real>(e_zz: R, before: R, after: R) -> R {
+    let f_mid = (before + after) * 0.5 + 1.0;
+    e_zz + (after - before) / f_mid
+}
+
 /// First Piola-Kirchhoff stress `P = tau F^-T` (row-major `[xX, xY, yX, yY]`, Pa) of a
 /// symmetric Kirchhoff stress `[xx, yy, zz, xy]` and `F^-1`: the nodal forces are
 /// `w_ref P dN/dX`.
@@ -257,6 +287,7 @@ mod tests {
         let mut m = Memory {
             gradient: [0.0; 4],
             strain: strain0,
+            hoop: 0.0,
         };
         let steps = 1000;
         for k in 1..=steps {
@@ -266,6 +297,7 @@ mod tests {
             m = Memory {
                 gradient: g,
                 strain: s.strain,
+                hoop: 0.0,
             };
             let theta = 1.7 * k as f64 / steps as f64;
             let r = s.rotation.apply(&[1.0, 0.0, 0.0, 0.0]);
@@ -295,6 +327,7 @@ mod tests {
                 m = Memory {
                     gradient: g,
                     strain: s.strain,
+                    hoop: 0.0,
                 };
             }
             (m.strain[0] - 1.5f64.ln()).abs()

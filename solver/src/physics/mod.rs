@@ -6,7 +6,7 @@
 //! ([`nose_contact`]), and prescribed loads ([`load`]). Finite deformation: the kinematics of a
 //! point ([`kinematics`]), the elements ([`finite_element`]) and materials ([`finite_material`])
 //! that use it. The axisymmetric geometry: the elements' hoop rows and ring weights
-//! ([`axisymmetric`]).
+//! ([`axisymmetric`]), under finite deformation too ([`finite_ring`]).
 
 pub mod axisymmetric;
 pub mod centroid;
@@ -15,6 +15,7 @@ pub mod contact_failure;
 pub mod element;
 pub mod finite_element;
 pub mod finite_material;
+pub mod finite_ring;
 pub mod geometry;
 pub mod impactor;
 pub mod kinematics;

@@ -202,6 +202,15 @@ compiled! {
     ring_one_point_elastic: Axisymmetric<OnePointQ4>, Elastic;
     ring_one_point_plastic: Axisymmetric<OnePointQ4>, VonMises;
     ring_one_point_rate: Axisymmetric<OnePointQ4>, ViscoPlastic;
+    finite_ring_full_elastic: UpdatedLagrangian<Axisymmetric<FullQ4>>, Finite<Elastic>;
+    finite_ring_full_plastic: UpdatedLagrangian<Axisymmetric<FullQ4>>, Finite<VonMises>;
+    finite_ring_full_rate: UpdatedLagrangian<Axisymmetric<FullQ4>>, Finite<ViscoPlastic>;
+    finite_ring_selective_elastic: UpdatedLagrangian<Axisymmetric<SelectiveQ4>>, Finite<Elastic>;
+    finite_ring_selective_plastic: UpdatedLagrangian<Axisymmetric<SelectiveQ4>>, Finite<VonMises>;
+    finite_ring_selective_rate: UpdatedLagrangian<Axisymmetric<SelectiveQ4>>, Finite<ViscoPlastic>;
+    finite_ring_one_point_elastic: UpdatedLagrangian<Axisymmetric<OnePointQ4>>, Finite<Elastic>;
+    finite_ring_one_point_plastic: UpdatedLagrangian<Axisymmetric<OnePointQ4>>, Finite<VonMises>;
+    finite_ring_one_point_rate: UpdatedLagrangian<Axisymmetric<OnePointQ4>>, Finite<ViscoPlastic>;
 }
 
 #[cfg(test)]
@@ -279,5 +288,53 @@ mod tests {
         check(|| PlateModel::new(ring_sri().unwrap(), test_von_mises(), &mesh, 7850.0));
         check(|| PlateModel::new(ring_1pt().unwrap(), elastic, &mesh, 7850.0));
         check(|| PlateModel::new(ring_1pt().unwrap(), test_von_mises(), &mesh, 7850.0));
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_full().unwrap()),
+                Finite(elastic),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_full().unwrap()),
+                plastic(),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_sri().unwrap()),
+                Finite(elastic),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_sri().unwrap()),
+                plastic(),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_1pt().unwrap()),
+                Finite(elastic),
+                &mesh,
+                7850.0,
+            )
+        });
+        check(|| {
+            PlateModel::new(
+                UpdatedLagrangian(ring_1pt().unwrap()),
+                plastic(),
+                &mesh,
+                7850.0,
+            )
+        });
     }
 }

@@ -162,8 +162,7 @@ fn no_stiffness_matrix(
     Ok(())
 }
 
-/// [`build_on`] in the axisymmetric geometry (small strain: the scene refuses it with finite
-/// deformation), about the mid-span line.
+/// [`build_on`] in the axisymmetric geometry, about the mid-span line, in either kinematics.
 fn with_ring<U: UseModel>(
     scene: &Scene,
     mesh: &PlateMesh,
@@ -182,21 +181,33 @@ fn with_ring<U: UseModel>(
         path,
     };
     match scene.mesh.element {
-        ElementKind::Q4Full => with_material(
+        ElementKind::Q4Full => with_ring_kinematics(
             Axisymmetric::<FullQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
         ),
-        ElementKind::Q4Sri => with_material(
+        ElementKind::Q4Sri => with_ring_kinematics(
             Axisymmetric::<SelectiveQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
         ),
-        ElementKind::Q4OnePoint => with_material(
+        ElementKind::Q4OnePoint => with_ring_kinematics(
             Axisymmetric::<OnePointQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
         ),
+    }
+}
+
+/// The ring element `formulation` in the scene's kinematics.
+fn with_ring_kinematics<F: MaterialOf + FiniteResponse, U: UseModel>(
+    formulation: F,
+    request: Request,
+    user: U,
+) -> Result<U::Output> {
+    match request.scene.kinematics {
+        Kinematics::Small => with_material(formulation, request, user),
+        Kinematics::Finite => with_material(UpdatedLagrangian(formulation), request, user),
     }
 }
 
