@@ -23,6 +23,18 @@
 //!   yield, `tau_yy = K e + sign(e) 2/3 q`, `tau_xx = tau_zz = K e - sign(e) q / 3`; the true
 //!   (Cauchy) stress is `tau / lambda`.
 //!
+//! In the axisymmetric geometry (`geometry: axisymmetric`; the block's right edge is the axis,
+//! so its elements touch it, and each node moves to `r = lambda_r R`), where a homogeneous
+//! field has the hoop stretch equal to the radial one:
+//! - `radial-expansion`: `lambda_r = lambda_theta = 1 + (stretch - 1) s`, `lambda_z = 1`;
+//! - `upsetting`: `lambda_z = 1 + (stretch - 1) s`, `lambda_r = lambda_theta = lambda_z^-1/2`
+//!   (isochoric: the large compression of a billet).
+//!   Both are proportional paths in principal axes that never rotate: the unrotated strain is
+//!   the logarithmic one `(ln lambda_r, ln lambda_z, ln lambda_theta)`, and one radial return
+//!   from the virgin state gives the Kirchhoff stress exactly (linear hardening, a fixed
+//!   direction); the Cauchy stress is `tau / J`, `J = lambda_r^2 lambda_z`. The top face's
+//!   axial force is `sigma_zz pi r^2` on the current radius `r = lambda_r R` (whole ring).
+//!
 //! Metrics: the largest stress error over the path (relative to the largest reference stress),
 //! the spread over the points (a homogeneous field must stay homogeneous), the strain energy
 //! change (rotation), and the right edge's force resultant against `sigma n l` on the current
@@ -31,14 +43,15 @@
 
 use std::collections::BTreeMap;
 
-use impact_solver::element::Formulation;
-use impact_solver::finite_element::UpdatedLagrangian;
+use impact_solver::axisymmetric::{Axisymmetric, RingElement};
+use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use impact_solver::finite_element::{FiniteResponse, UpdatedLagrangian};
 use impact_solver::finite_material::Finite;
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::{ConstitutiveModel, Elastic, Stress, VonMises};
 use impact_solver::mesh::PlateMesh;
 use impact_solver::model::AnyFormulation;
-use impact_solver::scene::{Hardening, Material, Plasticity};
+use impact_solver::scene::{ElementKind, Hardening, Material, Plasticity};
 use serde_json::Value;
 
 use super::driver::mapped_mesh;
@@ -58,6 +71,8 @@ enum Path {
     Rotation { angle: f64, stretch: f64 },
     SimpleShear { gamma: f64 },
     Compression { stretch: f64 },
+    RadialExpansion { stretch: f64 },
+    Upsetting { stretch: f64 },
 }
 
 impl Path {
@@ -77,10 +92,21 @@ impl Path {
             "compression" => Ok(Path::Compression {
                 stretch: param(p, "stretch", 0.5)?,
             }),
+            "radial-expansion" => Ok(Path::RadialExpansion {
+                stretch: param(p, "stretch", 1.5)?,
+            }),
+            "upsetting" => Ok(Path::Upsetting {
+                stretch: param(p, "stretch", 0.5)?,
+            }),
             other => Err(format!(
-                "param path: {other:?} is not rotation, simple-shear or compression"
+                "param path: {other:?} is not rotation, simple-shear, compression, radial-expansion or upsetting"
             )),
         }
+    }
+
+    /// Whether the path is one of the axisymmetric geometry's.
+    fn is_ring(self) -> bool {
+        matches!(self, Path::RadialExpansion { .. } | Path::Upsetting { .. })
     }
 
     /// The rotation path's stretch along x and angle (rad) at `s`.
@@ -106,13 +132,21 @@ impl Path {
                 let l = 1.0 + (stretch - 1.0) * s;
                 ([1.0, 0.0, 0.0, l], l.ln())
             }
+            Path::RadialExpansion { stretch } => {
+                let l = 1.0 + (stretch - 1.0) * s;
+                ([l, 0.0, 0.0, 1.0], l.ln())
+            }
+            Path::Upsetting { stretch } => {
+                let l = 1.0 + (stretch - 1.0) * s;
+                ([1.0 / l.sqrt(), 0.0, 0.0, l], l.ln())
+            }
         }
     }
 }
 
 /// One recorded step: the path's variable, the Cauchy stress of point 0 of element 0 (Pa), the
 /// largest difference of any point's from it (Pa), the strain energy (J), the right edge's
-/// force resultant (N).
+/// force resultant and the top face's axial force (N).
 #[derive(Debug, Clone, Copy)]
 struct Row {
     /// The path parameter in [0, 1].
@@ -122,17 +156,23 @@ struct Row {
     spread: f64,
     strain_energy: f64,
     edge: [f64; 2],
+    top: f64,
+    /// The left edge's x force (the ring's outer face, N).
+    outer: f64,
 }
 
-/// Moves every node to `F(s) X` in `steps` steps, recording each.
+/// Moves every node to `F(s) (X - origin) + origin` in `steps` steps, recording each (`origin`
+/// on the x axis, m: 0 in plane strain, the axis in the ring).
 fn drive<F: Formulation, M: ConstitutiveModel>(
     mut model: PlateModel<F, M>,
     mesh: &PlateMesh,
-    path: Path,
+    (path, origin): (Path, f64),
     steps: usize,
 ) -> Vec<Row> {
     let coords = &mesh.mesh.coords;
     let right = coords.iter().map(|p| p[0]).fold(f64::MIN, f64::max);
+    let top = coords.iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+    let left = coords.iter().map(|p| p[0]).fold(f64::MAX, f64::min);
     let mut u = vec![0.0; 2 * coords.len()];
     let mut f = vec![0.0; u.len()];
     let mut rows = Vec::with_capacity(steps + 1);
@@ -140,8 +180,9 @@ fn drive<F: Formulation, M: ConstitutiveModel>(
         let s = k as f64 / steps as f64;
         let (g, x) = path.deformation(s);
         for (n, p) in coords.iter().enumerate() {
-            u[2 * n] = (g[0] - 1.0) * p[0] + g[1] * p[1];
-            u[2 * n + 1] = g[2] * p[0] + (g[3] - 1.0) * p[1];
+            let x = p[0] - origin;
+            u[2 * n] = (g[0] - 1.0) * x + g[1] * p[1];
+            u[2 * n + 1] = g[2] * x + (g[3] - 1.0) * p[1];
         }
         let energy = model.internal_forces(&u, &mut f);
         let stress = model.point_stress(0, 0, &u);
@@ -154,11 +195,17 @@ fn drive<F: Formulation, M: ConstitutiveModel>(
                 }
             }
         }
-        let mut edge = [0.0; 2];
+        let (mut edge, mut top_force, mut outer) = ([0.0; 2], 0.0, 0.0);
         for (n, p) in coords.iter().enumerate() {
             if (p[0] - right).abs() < 1e-12 * right {
                 edge[0] += f[2 * n];
                 edge[1] += f[2 * n + 1];
+            }
+            if (p[1] - top).abs() < 1e-12 * top {
+                top_force += f[2 * n + 1];
+            }
+            if (p[0] - left).abs() < 1e-12 * right {
+                outer += f[2 * n];
             }
         }
         rows.push(Row {
@@ -168,6 +215,8 @@ fn drive<F: Formulation, M: ConstitutiveModel>(
             spread,
             strain_energy: energy.strain,
             edge,
+            top: top_force,
+            outer,
         });
     }
     rows
@@ -317,6 +366,16 @@ fn reference(path: Path, m: &PlasticMaterial, elastic: bool, rows: &[Row]) -> Ve
             .iter()
             .map(|r| uniaxial_strain(m, elastic, r.x).map(|t| t / r.x.exp()))
             .collect(),
+        Path::RadialExpansion { .. } | Path::Upsetting { .. } => rows
+            .iter()
+            .map(|r| {
+                let (g, _) = path.deformation(r.s);
+                let (radial, axial) = (g[0], g[3]);
+                let e = [radial.ln(), axial.ln(), radial.ln(), 0.0];
+                let j = radial * radial * axial;
+                ReferenceJ2::new(m, elastic).stress(e).map(|t| t / j)
+            })
+            .collect(),
     }
 }
 
@@ -359,16 +418,52 @@ pub fn finite_strain_path(p: &Params) -> Result<RunData, String> {
     let steps = param(p, "steps", 2000.0)? as usize;
     let mesh = mapped_mesh(SIDE, SIDE, 4, 4, 0.1)?;
     let kind = element(p)?;
+    let ring = match p
+        .get("geometry")
+        .and_then(Value::as_str)
+        .unwrap_or("plane-strain")
+    {
+        "plane-strain" => false,
+        "axisymmetric" => true,
+        other => {
+            return Err(format!(
+                "param geometry: {other:?} is not plane-strain or axisymmetric"
+            ))
+        }
+    };
+    if ring != path.is_ring() {
+        return Err(format!("param path: {path:?} does not run in this geometry (radial-expansion and upsetting are the axisymmetric geometry's, the others plane strain's)"));
+    }
+    // The ring's axis: the block's right edge.
+    let axis = mesh
+        .mesh
+        .coords
+        .iter()
+        .map(|c| c[0])
+        .fold(f64::MIN, f64::max);
     let e = Elastic::new(material.youngs_modulus, material.poisson_ratio);
     let rows = |steps| -> Result<Vec<Row>, String> {
-        let any =
-            AnyFormulation::new(kind, &mesh.mesh, 1.0, 0.05, &e).map_err(|e| e.to_string())?;
         let m = solver_material(&material, elastic);
         let rho = material.density;
+        if ring {
+            let how = RingRun {
+                mesh: &mesh,
+                axis,
+                p_modulus: e.p_modulus(),
+                finite,
+            };
+            return match kind {
+                ElementKind::Q4Full => how.rows::<FullQ4, _>(m, rho, (path, steps)),
+                ElementKind::Q4Sri => how.rows::<SelectiveQ4, _>(m, rho, (path, steps)),
+                ElementKind::Q4OnePoint => how.rows::<OnePointQ4, _>(m, rho, (path, steps)),
+            };
+        }
+        let any =
+            AnyFormulation::new(kind, &mesh.mesh, 1.0, 0.05, &e).map_err(|e| e.to_string())?;
         Ok(impact_solver::with_formulation!(any, f => if finite {
-            drive(PlateModel::new(UpdatedLagrangian(f), Finite(m), &mesh, rho), &mesh, path, steps)
+            drive(PlateModel::new(UpdatedLagrangian(f), Finite(m), &mesh, rho), &mesh, (path, 0.0), steps)
         } else {
-            drive(PlateModel::new(f, m, &mesh, rho), &mesh, path, steps)
+            drive(PlateModel::new(f, m, &mesh, rho), &mesh, (path, 0.0), steps)
         }))
     };
     let fine = rows(steps)?;
@@ -392,13 +487,52 @@ pub fn finite_strain_path(p: &Params) -> Result<RunData, String> {
     let spread = fine.iter().map(|r| r.spread).fold(0.0f64, f64::max);
     m.insert("spread".into(), spread / scale);
     m.insert("reference_scale_Pa".into(), scale);
-    insert_path_metrics(&mut m, path, &fine);
+    insert_path_metrics(&mut m, (path, axis), &fine);
     Ok(with_history(m, history(path, &fine, &refs, e.mu)))
 }
 
+/// How the block runs in the axisymmetric geometry: about the axis at `axis` (m).
+struct RingRun<'a> {
+    mesh: &'a PlateMesh,
+    axis: f64,
+    /// Pa (the one-point element's hourglass stiffness).
+    p_modulus: f64,
+    finite: bool,
+}
+
+impl RingRun<'_> {
+    /// The rows of `path` in `steps` steps with the ring element `E` and the material `m`
+    /// (density `rho`, kg/m^3).
+    fn rows<E: RingElement, M: ConstitutiveModel>(
+        &self,
+        m: M,
+        rho: f64,
+        (path, steps): (Path, usize),
+    ) -> Result<Vec<Row>, String>
+    where
+        Axisymmetric<E>: FiniteResponse,
+    {
+        let f = Axisymmetric::<E>::new(&self.mesh.mesh, self.axis, 0.05, self.p_modulus)
+            .map_err(|e| e.to_string())?;
+        let how = (path, self.axis);
+        Ok(if self.finite {
+            let model = PlateModel::new(UpdatedLagrangian(f), Finite(m), self.mesh, rho);
+            drive(model, self.mesh, how, steps)
+        } else {
+            drive(PlateModel::new(f, m, self.mesh, rho), self.mesh, how, steps)
+        })
+    }
+}
+
 /// Metrics of one path: the strain energy change under the rotation; the right edge's force
-/// against the current edge's `sigma n l` (and the reference edge's, the small-strain answer).
-fn insert_path_metrics(m: &mut BTreeMap<String, f64>, path: Path, rows: &[Row]) {
+/// against the current edge's `sigma n l` (and the reference edge's, the small-strain answer);
+/// in the ring the top face's force against `sigma_zz` on its current area (`outer_radius`,
+/// m, the block's reference radius).
+fn insert_path_metrics(
+    m: &mut BTreeMap<String, f64>,
+    (path, outer_radius): (Path, f64),
+    rows: &[Row],
+) {
     let last = rows[rows.len() - 1];
     match path {
         Path::Rotation { .. } => {
@@ -416,6 +550,26 @@ fn insert_path_metrics(m: &mut BTreeMap<String, f64>, path: Path, rows: &[Row]) 
             m.insert("edge_force_error".into(), miss / size);
         }
         Path::Compression { .. } => {}
+        Path::RadialExpansion { .. } | Path::Upsetting { .. } => {
+            // The top face's current area: the block's outer radius (its left edge, from the
+            // axis at its right edge) stretched.
+            let (g, _) = path.deformation(last.s);
+            let relative = |got: f64, expected: f64| {
+                (got - expected).abs() / expected.abs().max(f64::MIN_POSITIVE)
+            };
+            let radius = g[0] * outer_radius;
+            let area = std::f64::consts::PI * radius * radius;
+            m.insert(
+                "top_force_error".into(),
+                relative(last.top, last.stress[1] * area),
+            );
+            // The outer face (outward normal -x): -sigma_rr 2 pi r h on its current area.
+            let face = std::f64::consts::TAU * radius * g[3] * SIDE;
+            m.insert(
+                "outer_force_error".into(),
+                relative(last.outer, -last.stress[0] * face),
+            );
+        }
     }
 }
 
@@ -495,5 +649,48 @@ mod tests {
         );
         let right = run(&[("path", Value::from("rotation"))]);
         assert!(right["stress_error"] < 1e-10, "{right:?}");
+    }
+
+    /// In the ring, small kinematics misses both paths by order one (measured at 2000 steps:
+    /// radial expansion to 1.5, stress 1.77, top force 0.56; plastic upsetting to 0.5, stress
+    /// 5.87, top force 0.50), and finite kinematics passes them. (Two slips measured by
+    /// editing the solver, 2026-11-26: the hoop stress on the hoop row without `/ F_t`
+    /// leaves the stresses exact but misses the outer face's force by 7.6e-2; the hoop strain
+    /// left at zero misses the stress by 0.55.)
+    #[test]
+    fn small_kinematics_fails_the_ring_paths() {
+        let ring = Value::from("axisymmetric");
+        for (path, material) in [("radial-expansion", "elastic"), ("upsetting", "plastic")] {
+            let of = |kinematics: &str| {
+                run(&[
+                    ("path", Value::from(path)),
+                    ("material", Value::from(material)),
+                    ("geometry", ring.clone()),
+                    ("kinematics", Value::from(kinematics)),
+                ])
+            };
+            let small = of("small");
+            assert!(
+                small["stress_error"] > 0.5 && small["top_force_error"] > 0.4,
+                "{path}: {small:?}"
+            );
+            let finite = of("finite");
+            assert!(
+                finite["stress_error"] < 1e-5 && finite["outer_force_error"] < 1e-12,
+                "{path}: {finite:?}"
+            );
+        }
+    }
+
+    /// A plane path in the ring, or a ring path in plane strain, is an error that says so.
+    #[test]
+    fn a_path_in_the_wrong_geometry_is_refused() {
+        let mut p = Params::new();
+        p.insert("path".into(), Value::from("upsetting"));
+        let e = finite_strain_path(&p).unwrap_err();
+        assert!(e.contains("axisymmetric"), "{e}");
+        p.insert("path".into(), Value::from("compression"));
+        p.insert("geometry".into(), Value::from("axisymmetric"));
+        assert!(finite_strain_path(&p).is_err());
     }
 }
