@@ -67,7 +67,7 @@ class FiniteRing:
         self.gtn = np.zeros(n)                              # last step's g_t (F_t,bar - 1: sri)
         self.e_hat = np.zeros((n, 4))                       # unrotated strain (gamma_xy)
 
-    def _volume_average(self, J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def current_volume(self, J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(V, J_bar) per element: V = sum_gp w J (m^3), J_bar = V / V_ref."""
         V = (self.w_flat * J).reshape(self.nel, self.npt).sum(axis=1)
         return V, V / self.V_ref
@@ -83,7 +83,7 @@ class FiniteRing:
         sri = self.element == "q4-sri"
         if sri:
             J = det2(F) * Ft
-            V, J_bar = self._volume_average(J)
+            V, J_bar = self.current_volume(J)
             alpha = np.cbrt(np.repeat(J_bar, self.npt) / J)
             G_step = alpha[:, None, None] * F - eye
             gt_step = alpha * Ft - 1.0

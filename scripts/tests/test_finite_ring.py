@@ -189,9 +189,9 @@ def test_sri_current_ring_volume_is_exact():
     gt = fr.H @ u
     F = np.eye(2) + G
     detF = F[:, 0, 0] * F[:, 1, 1] - F[:, 0, 1] * F[:, 1, 0]
-    V, _ = fr._volume_average(detF * (1 + gt))
+    V, _ = fr.current_volume(detF * (1 + gt))
     assert np.abs(V - exact).max() <= 3e-15 * exact.max()
-    V_plane, _ = fr._volume_average(detF)
+    V_plane, _ = fr.current_volume(detF)
     assert np.abs(V_plane - exact).max() > 0.1 * exact.max()
 
 
