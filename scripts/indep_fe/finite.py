@@ -49,6 +49,18 @@ def det2(F: np.ndarray) -> np.ndarray:
     return F[..., 0, 0] * F[..., 1, 1] - F[..., 0, 1] * F[..., 1, 0]
 
 
+def unrotated_increment(Gn: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """Section 3c's in-plane step from G_n to G (npts, 2, 2): F_mid = I + (G_n + G) / 2,
+    L = (G - G_n) F_mid^-1, d = sym L, and d^ = R_m^T d R_m (R_m the polar rotation of F_mid),
+    returned as (xx, yy, 0, xy) (npts, 4) (tensor shear, not gamma)."""
+    F_mid = np.eye(2) + 0.5 * (Gn + G)
+    L = (G - Gn) @ np.swapaxes(inv_t2(F_mid), 1, 2)
+    d = 0.5 * (L + np.swapaxes(L, 1, 2))
+    cm, sm = polar_rotation(F_mid)
+    d_vec = np.stack([d[:, 0, 0], d[:, 1, 1], np.zeros(len(d)), d[:, 0, 1]], axis=1)
+    return rotate(d_vec, cm, -sm)                           # R_m^T d R_m
+
+
 def inv_t2(F: np.ndarray) -> np.ndarray:
     """F^-T of 2 x 2 matrices (..., 2, 2)."""
     J = det2(F)
@@ -60,7 +72,16 @@ def inv_t2(F: np.ndarray) -> np.ndarray:
     return out
 
 
-def _gradient_operator(pm: PlateMesh, dX: np.ndarray, dY: np.ndarray) -> sp.csr_matrix:
+def piola_weighted(t: np.ndarray, FinvT: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """w P = w tau F^-T of the in-plane tau = (xx, yy, zz, xy) (zz not used), flattened per point
+    as (xX, xY, yX, yY); w (npts,) the weights (m^3)."""
+    T = np.empty((len(t), 2, 2))
+    T[:, 0, 0], T[:, 1, 1] = t[:, 0], t[:, 1]
+    T[:, 0, 1] = T[:, 1, 0] = t[:, 3]
+    return (w[:, None, None] * (T @ FinvT)).ravel()
+
+
+def gradient_operator(pm: PlateMesh, dX: np.ndarray, dY: np.ndarray) -> sp.csr_matrix:
     """Sparse operator u -> per point (G_xX, G_xY, G_yX, G_yY); dX, dY (nel, npts, 4 nodes).
     Its transpose maps per-point (w P_xX, w P_xY, w P_yX, w P_yY) to nodal forces."""
     nel, npt = dX.shape[:2]
@@ -77,7 +98,7 @@ def _gradient_operator(pm: PlateMesh, dX: np.ndarray, dY: np.ndarray) -> sp.csr_
                          shape=(4 * nel * npt, ndof))
 
 
-def _centroid_difference(kin: Kinematics) -> tuple[np.ndarray, np.ndarray]:
+def centroid_difference(kin: Kinematics) -> tuple[np.ndarray, np.ndarray]:
     """The centroid derivatives in the one-point element's difference form (section 2):
     nodes 2 and 3 take nodes 0 and 1's negated. (nel, 1, 4) each."""
     bx = np.stack([kin.bx[:, 0], kin.bx[:, 1], -kin.bx[:, 0], -kin.bx[:, 1]], axis=1)
@@ -91,18 +112,18 @@ class FiniteKinematics:
     def __init__(self, element: str, pm: PlateMesh, kin: Kinematics, width: float):
         self.element = element
         self.pm = pm
-        bx, by = _centroid_difference(kin)
+        bx, by = centroid_difference(kin)
         self.b_ref = (bx[:, 0], by[:, 0])                  # (nel, 4) each
         self.area_w = kin.area * width                      # A W per element
         if element == "q4-1pt":
-            self.D = _gradient_operator(pm, bx, by)
+            self.D = gradient_operator(pm, bx, by)
             self.w = self.area_w[:, None]                   # (nel, 1)
         elif element in ("q4-full", "q4-sri"):
-            self.D = _gradient_operator(pm, kin.dNdx, kin.dNdy)
+            self.D = gradient_operator(pm, kin.dNdx, kin.dNdy)
             self.w = kin.detJw * width                      # (nel, 4) w_ref = det J W
         else:
             raise ValueError(f"unknown element {element}")
-        self.Dc = _gradient_operator(pm, bx, by) if element == "q4-sri" else None
+        self.Dc = gradient_operator(pm, bx, by) if element == "q4-sri" else None
         self.DT = self.D.T.tocsr()
         self.DcT = self.Dc.T.tocsr() if self.Dc is not None else None
         nel, npt = self.w.shape
@@ -132,13 +153,7 @@ class FiniteKinematics:
             G_step = alpha[:, None, None] * F - eye
         else:
             G_step = G
-        # the increment: midpoint gradient, its polar rotation, the unrotated rate of deformation
-        F_mid = eye + 0.5 * (self.Gn + G_step)
-        L = (G_step - self.Gn) @ np.swapaxes(inv_t2(F_mid), 1, 2)
-        d = 0.5 * (L + np.swapaxes(L, 1, 2))
-        cm, sm = polar_rotation(F_mid)
-        d_vec = np.stack([d[:, 0, 0], d[:, 1, 1], np.zeros(len(d)), d[:, 0, 1]], axis=1)
-        d_hat = rotate(d_vec, cm, -sm)                      # R_m^T d R_m
+        d_hat = unrotated_increment(self.Gn, G_step)
         self.e_hat[:, 0] += d_hat[:, 0]
         self.e_hat[:, 1] += d_hat[:, 1]
         self.e_hat[:, 3] += 2.0 * d_hat[:, 3]
@@ -154,42 +169,42 @@ class FiniteKinematics:
             t_dev = tau.copy()
             t_dev[:, 0] -= m
             t_dev[:, 1] -= m
-            f = self.DT @ self._piola_weighted(t_dev, FinvT, self.w_flat)
+            f = self.DT @ piola_weighted(t_dev, FinvT, self.w_flat)
             M = (self.w_flat * m).reshape(self.nel, self.npt).sum(axis=1)
             Pc = M[:, None, None] * inv_t2(Fc)
             f += self.DcT @ Pc.ravel()
         else:
-            f = self.DT @ self._piola_weighted(tau, FinvT, self.w_flat)
+            f = self.DT @ piola_weighted(tau, FinvT, self.w_flat)
         self.Gn = G_step
         cauchy = tau / det2(F_rot)[:, None]
         return cauchy, energy, dwork, f
 
-    @staticmethod
-    def _piola_weighted(t: np.ndarray, FinvT: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """w P = w tau F^-T, flattened per point as (xX, xY, yX, yY)."""
-        T = np.empty((len(t), 2, 2))
-        T[:, 0, 0], T[:, 1, 1] = t[:, 0], t[:, 1]
-        T[:, 0, 1] = T[:, 1, 0] = t[:, 3]
-        return (w[:, None, None] * (T @ FinvT)).ravel()
-
     def step_factor(self, u: np.ndarray) -> tuple[float, int]:
-        """min_e sqrt(S_ref / S_cur) and its element, S = sum_a |grad N_a|^2 at the centroid on
-        the reference and the current configuration (section 3c's deformed-step check)."""
-        bx, by = self.b_ref
-        ux, uy = u[2 * self.pm.conn], u[2 * self.pm.conn + 1]
-        # the centroid's F_c; the current gradients are F_c^-T grad_X N_a
-        Fc = np.empty((self.nel, 2, 2))
-        Fc[:, 0, 0] = 1.0 + (ux * bx).sum(1)
-        Fc[:, 0, 1] = (ux * by).sum(1)
-        Fc[:, 1, 0] = (uy * bx).sum(1)
-        Fc[:, 1, 1] = 1.0 + (uy * by).sum(1)
-        FiT = inv_t2(Fc)
-        gx = FiT[:, 0, 0, None] * bx + FiT[:, 0, 1, None] * by
-        gy = FiT[:, 1, 0, None] * bx + FiT[:, 1, 1, None] * by
-        S_cur = (gx * gx + gy * gy).sum(axis=1)
-        ratio = np.sqrt(self.S_ref / S_cur)
-        e = int(np.argmin(ratio))
-        return float(ratio[e]), e
+        """Section 3c's deformed-step factor and its element (deformed_step_factor)."""
+        return deformed_step_factor(self.pm, self.b_ref, self.S_ref, u)
+
+
+def deformed_step_factor(pm: PlateMesh, b_ref: tuple[np.ndarray, np.ndarray], S_ref: np.ndarray,
+                         u: np.ndarray) -> tuple[float, int]:
+    """min_e sqrt(S_ref / S_cur) and its element, S = sum_a |grad N_a|^2 at the centroid on
+    the reference and the current configuration (section 3c's deformed-step check, on the
+    section's in-plane geometry also in the ring, section 3e); b_ref the centroid's
+    (b_x, b_y) (nel, 4) each (1/m)."""
+    bx, by = b_ref
+    ux, uy = u[2 * pm.conn], u[2 * pm.conn + 1]
+    # the centroid's F_c; the current gradients are F_c^-T grad_X N_a
+    Fc = np.empty((len(bx), 2, 2))
+    Fc[:, 0, 0] = 1.0 + (ux * bx).sum(1)
+    Fc[:, 0, 1] = (ux * by).sum(1)
+    Fc[:, 1, 0] = (uy * bx).sum(1)
+    Fc[:, 1, 1] = 1.0 + (uy * by).sum(1)
+    FiT = inv_t2(Fc)
+    gx = FiT[:, 0, 0, None] * bx + FiT[:, 0, 1, None] * by
+    gy = FiT[:, 1, 0, None] * bx + FiT[:, 1, 1, None] * by
+    S_cur = (gx * gx + gy * gy).sum(axis=1)
+    ratio = np.sqrt(S_ref / S_cur)
+    e = int(np.argmin(ratio))
+    return float(ratio[e]), e
 
 
 def inverted_element(pm: PlateMesh, u: np.ndarray) -> int | None:

@@ -477,17 +477,16 @@ def parse_scene(data: dict) -> Scene:
     if geometry not in GEOMETRIES:
         raise SceneError(f"geometry must be plane-strain | axisymmetric, got {geometry!r}")
     if geometry == "axisymmetric":
-        _check_axisymmetric(mesh, impactor, kinematics)
+        _check_axisymmetric(mesh, impactor)
     return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry)
 
 
-def _check_axisymmetric(mesh: MeshSpec, impactor: Impactor | None, kinematics: str) -> None:
-    """Section 3d's domain: the half model, small kinematics, a pulse or the surface nose
-    (time.dt.estimate: global, also refused there, is refused for every scene here)."""
+def _check_axisymmetric(mesh: MeshSpec, impactor: Impactor | None) -> None:
+    """Section 3d's domain: the half model, a pulse or the surface nose, either kinematics
+    (finite: section 3e) (time.dt.estimate: global, also refused there, is refused for every
+    scene here)."""
     if mesh.model != "half":
         raise SceneError(f"geometry: axisymmetric needs mesh.model: half, got {mesh.model!r}")
-    if kinematics != "small":
-        raise SceneError("geometry: axisymmetric needs kinematics: small")
     if impactor is not None and impactor.coupling != "surface":
         raise SceneError("geometry: axisymmetric needs load.impactor.contact: surface")
 

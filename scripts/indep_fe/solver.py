@@ -17,6 +17,7 @@ from .axisymmetric import Ring, ring_eigenvalues, ring_formulation, ring_node_ma
 from .elements import (elastic_matrix, element_eigenvalues, formulation, global_operators,
                        kinematics, lumped_mass)
 from .finite import CHECK_EVERY, FiniteKinematics, inverted_element
+from .finite_ring import FiniteRing
 from .material import MaterialModel, lame, von_mises
 from .mesh import build_mesh, find_element
 from .scene import Scene
@@ -102,7 +103,7 @@ class _Plate:
     ngp: int
     dt_plate: float                       # the plate's critical step (section 4)
     nose: SurfaceNose | None = None       # the surface coupling (section 5b)
-    finite: FiniteKinematics | None = None  # kinematics: finite (section 3c)
+    finite: FiniteKinematics | FiniteRing | None = None  # kinematics: finite (3c, 3e)
 
 
 def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
@@ -122,6 +123,7 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
         lam_e = ring_eigenvalues(form, D, m_e)
         m_node = ring_node_masses(pm, m_e)
     else:
+        ring = None
         form = formulation(ms.element, pm, kin, W, lam, mu, ms.hourglass)
         lam_e = element_eigenvalues(form, D, kin, mat.density, W)
         m_node = lumped_mass(pm, kin, mat.density, W)
@@ -144,8 +146,11 @@ def _discretise(scene: Scene) -> tuple[_Plate, MaterialModel, float, float]:
 
     Bg, G = global_operators(form, pm)
     nel, ngp = form.B.shape[:2]
-    finite = (FiniteKinematics(ms.element, pm, kin, W) if scene.kinematics == "finite"
-              else None)
+    finite = None
+    if scene.kinematics == "finite":
+        # section 3c in the plane, section 3e in the ring
+        finite = (FiniteRing(ms.element, pm, kin, ring) if scene.geometry == "axisymmetric"
+                  else FiniteKinematics(ms.element, pm, kin, W))
     pl = _Plate(pm=pm, form=form, Bg=Bg, BgT=Bg.T.tocsr(), G=G,
                 GT=G.T.tocsr() if G is not None else None, m_dof=m_dof,
                 inv_m=inv_m, s=pm.symmetry, w_flat=form.w.ravel(),

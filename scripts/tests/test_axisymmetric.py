@@ -122,7 +122,6 @@ def test_stable_step_unequal_masses(element):
 
 @pytest.mark.parametrize("over, words", [
     ({"mesh.model": "full"}, "mesh.model: half"),
-    ({"kinematics": "finite"}, "kinematics: small"),
     ({"geometry": "cylindrical"}, "plane-strain | axisymmetric"),
 ])
 def test_scene_refusals(over, words):
