@@ -9,12 +9,14 @@
 # scenes, impact-plastic-cowper-symonds and impact-plastic-johnson-cook with heating,
 # <= 6.8e-12, their summaries <= 2.3e-13; the two finite-deformation scenes,
 # impact-plastic-finite and impact-plastic-1pt-full-finite, <= 1.3e-10, their summaries
-# <= 4.8e-14; the three axisymmetric scenes axisym-*, <= 2.3e-10, their summaries <= 2.2e-12;
-# the three finite-deformation scenes in the ring (section 3e), axisym-*-finite, <= 5.7e-10
-# (A_syy_Pa of axisym-surface-plastic-finite, 3.0e-11 of its von Mises peak; the pulses
-# <= 2.8e-11), their summaries <= 4.0e-12) (see scripts/README.md, "Agreement measured").
-# Fails (exit 1) when any scene fails; all scenes are run first. Outputs go to
-# $CI_COMPARE_OUT (default: a temporary folder, removed on success).
+# <= 4.8e-14; the three axisymmetric scenes axisym-pulse-* and axisym-surface-plastic, <= 2.3e-10,
+# their summaries <= 2.2e-12; the three finite-deformation scenes in the ring (section 3e),
+# axisym-*-finite, <= 5.7e-10 (A_syy_Pa of axisym-surface-plastic-finite, 3.0e-11 of its von
+# Mises peak; the pulses <= 2.8e-11), their summaries <= 4.0e-12; the two rigid-wall scenes,
+# wall-elastic-bar and axisym-wall-taylor, <= 7.1e-14, their summaries with the wall object
+# <= 8.2e-15) (see scripts/README.md, "Agreement measured"). Fails (exit 1) when any scene
+# fails; all scenes are run first. Outputs go to $CI_COMPARE_OUT (default: a temporary
+# folder, removed on success).
 # IMPACT_BIN=path uses that impact binary instead of building target/release/impact.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -262,3 +262,21 @@ def test_ctrl_c_stops_a_run_within_a_second(small_scene, tmp_path, to_folder):
     assert list(tmp_path.iterdir()) == []
     # The module still works after the interrupt.
     assert impact.simulate(small_scene).summary["n_steps"] > 0
+
+
+def test_the_rigid_wall_from_a_dict_equals_the_cli(cli, tmp_path):
+    """`load: {wall}` (the Taylor bar scene, small kinematics) given as a dict: the summary with
+    its `wall` object and the history (`foot_radius_m`, `bar_length_m`) bit for bit the CLI's;
+    a clamped wall scene refused with the CLI's message (field, value, what is allowed)."""
+    from conftest import ROOT
+    path = ROOT / "verification" / "scenes" / "taylor-bar.yaml"
+    subprocess.run([cli, "simulate", path, "--out", tmp_path, "--quiet"], check=True)
+    scene = yaml.safe_load(path.read_text())
+    run = impact.simulate(scene)
+    assert without_timing(run.summary) == without_timing(read_summary(tmp_path / "summary.json"))
+    assert_same_history(run.history, read_history(tmp_path / "history.csv"))
+    assert run.summary["wall"]["final_length_m"] < 0.0324
+    assert "foot_radius_m" in run.history and "bar_length_m" in run.history
+    scene["plate"]["ends"] = "clamped"
+    with pytest.raises(impact.SceneError, match=r"plate\.ends = clamped: must be `free`"):
+        impact.simulate(scene)

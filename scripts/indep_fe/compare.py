@@ -38,8 +38,9 @@ SUMMARY_METRICS = ["impulse_Ns", "peak_contact_force_N", "max_plate_displacement
                    "final_impactor_velocity_mps", "contact_duration_s", "contact_step_factor",
                    "max_contact_half_width_m", "max_nodes_in_contact", "max_temperature_K",
                    "heat_J"]
-# per-probe summary objects (max_plastic_strain_rate_1_s: with a rate law only)
-SUMMARY_PER_PROBE = ["max_von_mises_Pa", "max_plastic_strain_rate_1_s"]
+# summary objects compared key by key: per probe (max_plastic_strain_rate_1_s: with a rate law
+# only) and the rigid wall's (section 5c: wall scenes only)
+SUMMARY_PER_PROBE = ["max_von_mises_Pa", "max_plastic_strain_rate_1_s", "wall"]
 SUMMARY_EXACT = ["dt_s", "n_steps", "n_elements"]
 # columns drawn by --plots (those present), each in its own panel with the difference below
 PLOT_COLUMNS = ["contact_force_N", "indentation_m", "impactor_velocity_mps",

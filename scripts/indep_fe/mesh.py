@@ -113,10 +113,11 @@ def build_mesh(plate: Plate, spec: MeshSpec) -> PlateMesh:
     # --- boundary conditions
     node = lambda i_, j_: i_ + j_ * (nx + 1)
     jall = np.arange(ny + 1)
-    # ends: clamped u_x = u_y = 0, roller u_x = 0, slider u_y = 0 (ALGORITHM.md, plate.ends)
-    comps = {"clamped": (0, 1), "roller": (0,), "slider": (1,)}[plate.ends]
+    # ends: clamped u_x = u_y = 0, roller u_x = 0, slider u_y = 0, free: none (ALGORITHM.md,
+    # plate.ends)
+    comps = {"clamped": (0, 1), "roller": (0,), "slider": (1,), "free": ()}[plate.ends]
     support = lambda i_: [2 * node(i_, jall) + c for c in comps]
-    fixed = support(0)
+    fixed = support(0) or [np.zeros(0, dtype=int)]
     if spec.model == "half":
         fixed.append(2 * node(nx, jall))                  # symmetry: u_x = 0 at x = L/2
         imid, s = nx, 2.0

@@ -13,7 +13,7 @@ class SceneError(ValueError):
     pass
 
 
-ENDS = ("clamped", "roller", "slider")
+ENDS = ("clamped", "roller", "slider", "free")
 
 
 @dataclass
@@ -21,7 +21,7 @@ class Plate:
     length: float
     width: float
     thickness: float
-    ends: str = "clamped"     # clamped: u_x = u_y = 0 | roller: u_x = 0 | slider: u_y = 0
+    ends: str = "clamped"     # clamped: u_x = u_y = 0 | roller: u_x = 0 | slider: u_y = 0 | free
 
 
 @dataclass
@@ -107,6 +107,11 @@ class Pulse:
 
 
 @dataclass
+class Wall:
+    velocity: float      # m/s toward the rigid wall y = 0 (ALGORITHM.md section 5c)
+
+
+@dataclass
 class TimeSpec:
     end: float | None = None              # fixed end time
     after_contact: float | None = None    # or: stop this long after contact ended
@@ -140,6 +145,7 @@ class Scene:
     output: Output
     kinematics: str = "small"    # small (sections 2-3) | finite (section 3c)
     geometry: str = "plane-strain"  # plane-strain (sections 1-2) | axisymmetric (section 3d)
+    wall: Wall | None = None        # the body onto the rigid wall (section 5c)
 
 
 KINEMATICS = ("small", "finite")
@@ -401,22 +407,25 @@ def _parse_impactor(im: dict) -> Impactor:
                     isnu, law, datum, fnode if fnode is not None else datum)
 
 
-def _parse_load(data: dict) -> tuple[Impactor | None, Pulse | None]:
-    """load: exactly one of an impactor or a pulse."""
+def _parse_load(data: dict) -> tuple[Impactor | None, Pulse | None, Wall | None]:
+    """load: exactly one of an impactor, a pulse or the wall."""
     load = _req(data, "load", "scene")
-    _refuse_unknown(load, {"impactor", "pulse", "traction"}, "load")
+    _refuse_unknown(load, {"impactor", "pulse", "traction", "wall"}, "load")
     _refuse_unsupported(load, {"traction"}, "load")
-    impactor = pulse = None
-    if ("impactor" in load) == ("pulse" in load):
-        raise SceneError("load must have exactly one of 'impactor' or 'pulse'")
+    impactor = pulse = wall = None
+    if sum(k in load for k in ("impactor", "pulse", "wall")) != 1:
+        raise SceneError("load must have exactly one of 'impactor', 'pulse' or 'wall'")
     if "impactor" in load:
         impactor = _parse_impactor(load["impactor"])
+    elif "wall" in load:
+        _refuse_unknown(load["wall"], {"velocity"}, "load.wall")
+        wall = Wall(_pos(_req(load["wall"], "velocity", "load.wall"), "load.wall.velocity"))
     else:
         pu = load["pulse"]
         _refuse_unknown(pu, {"force", "duration"}, "load.pulse")
         pulse = Pulse(float(_req(pu, "force", "load.pulse")),
                       _pos(_req(pu, "duration", "load.pulse"), "load.pulse.duration"))
-    return impactor, pulse
+    return impactor, pulse, wall
 
 
 def _parse_time(data: dict) -> TimeSpec:
@@ -470,19 +479,21 @@ def parse_scene(data: dict) -> Scene:
     plate = _parse_plate(data)
     material = _parse_material(data)
     mesh = _parse_mesh(data)
-    impactor, pulse = _parse_load(data)
+    impactor, pulse, wall = _parse_load(data)
     ts = _parse_time(data)
+    if wall is not None and (plate.ends != "free" or mesh.model != "half" or ts.end is None):
+        raise SceneError("load: {wall} needs plate.ends: free, mesh.model: half and time.end a time")
     output = _parse_output(data, plate)
     geometry = str(data.get("geometry", "plane-strain"))
     if geometry not in GEOMETRIES:
         raise SceneError(f"geometry must be plane-strain | axisymmetric, got {geometry!r}")
     if geometry == "axisymmetric":
         _check_axisymmetric(mesh, impactor)
-    return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry)
+    return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry, wall)
 
 
 def _check_axisymmetric(mesh: MeshSpec, impactor: Impactor | None) -> None:
-    """Section 3d's domain: the half model, a pulse or the surface nose, either kinematics
+    """Section 3d's domain: the half model, a pulse, the surface nose or the wall, either kinematics
     (finite: section 3e) (time.dt.estimate: global, also refused there, is refused for every
     scene here)."""
     if mesh.model != "half":

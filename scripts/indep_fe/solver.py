@@ -22,6 +22,7 @@ from .material import MaterialModel, lame, von_mises
 from .mesh import build_mesh, find_element
 from .scene import Scene
 from .surface import SurfaceNose
+from .wall import RigidWall
 
 ENERGY_COLUMNS = ["plate_kinetic_J", "impactor_kinetic_J", "strain_energy_J", "plastic_work_J",
                   "hourglass_energy_J", "contact_energy_J", "external_work_J",
@@ -33,6 +34,7 @@ TEMPERATURE_SUFFIX = "temperature_K"         # with its thermal part
 
 IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
 SURFACE_COLUMNS = ["contact_half_width_m", "nodes_in_contact"]
+WALL_COLUMNS = ["foot_radius_m", "bar_length_m"]
 # Blow-up guard (ALGORITHM.md section 7): imbalance above this multiple of the largest energy
 # scale reached so far stops the run as unstable; for energy-consistent scenes (force node =
 # datum node, a pulse, the surface coupling) 0.1 of it does, from step 100 on.
@@ -46,12 +48,14 @@ class UnstableRun(RuntimeError):
 
 
 def history_columns(probe_names: list[str], impact: bool = True, surface: bool = False,
-                    rate: bool = False, thermal: bool = False) -> list[str]:
+                    rate: bool = False, thermal: bool = False, wall: bool = False) -> list[str]:
     """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns; the surface
     coupling adds its two after them; a rate law adds each probe's plastic strain rate after
-    its von Mises stress, and `thermal` its temperature after that (section 3b)."""
+    its von Mises stress, and `thermal` its temperature after that (section 3b); the wall its
+    two after the surface coupling's place (section 5c)."""
     cols = ["time_s", "contact_force_N"] + (IMPACT_COLUMNS if impact else [])
     cols += SURFACE_COLUMNS if surface else []
+    cols += WALL_COLUMNS if wall else []
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
     for p in probe_names:
         cols += [f"{p}_{s}" for s in PROBE_SUFFIXES]
@@ -389,10 +393,16 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     rate = material.rate
     thermal = rate is not None and rate.thermal is not None
     columns = history_columns(probe_names, impact=body is not None, surface=surface,
-                              rate=rate is not None, thermal=thermal)
+                              rate=rate is not None, thermal=thermal, wall=scene.wall is not None)
     rows: list[list] = []
     s, ndof, pm = pl.s, 2 * pl.pm.n_nodes, pl.pm
-    u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2}
+    u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2} (v_0 at n = 0)
+    wall = None
+    if scene.wall is not None:      # section 5c
+        wall = RigidWall(pm.coords, pl.inv_m, pl.m_dof[0::2], s, pm.coords[pm.bottom][0],
+                         scene.plate.thickness, pm.top)
+        v_half = wall.launch(scene.wall.velocity)
+    F_last = 0.0
     W_ext = 0.0
     totals = {"impulse": 0.0, "peak_F": 0.0, "max_down": 0.0, "plastic_work": 0.0,
               "max_vm": {p: 0.0 for p in probe_names}, "wall0": wall0,
@@ -415,21 +425,28 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             # section 5b: the kinematic enforcement solves f_n, F_n here, from f_int(u_n); the
             # impulse's trapezoid (F_n-1 + F_n) dt / 2 is counted once F_n is known
             totals["impulse"] += body.solve(u, v_half, f_int, dt, first=n == 0)
-        load = body.F if body is not None else F_pulse(t)
+        if wall is not None:
+            load = wall.solve(u, v_half, f_int, dt, first=n == 0)
+            totals["impulse"] += 0.5 * (F_last + load) * dt if n > 0 else 0.0
+            F_last = load
+        else:
+            load = body.F if body is not None else F_pulse(t)
         last, stop_reason = contact.step(n, t, dt, load)
 
         # 2. external force; 3. central difference
         f_ext = np.zeros(ndof)
         if surface:
             body.apply(f_ext)           # the nose's f_i at t_n (section 5b)
+        elif wall is not None:
+            wall.apply(f_ext)           # the wall's R_i at t_n (section 5c)
         else:
             f_ext[fy] = -load / s
         a = (f_ext - f_int) * pl.inv_m
-        v_new = v_half + dt * a if n > 0 else 0.5 * dt * a
+        v_new = v_half + dt * a if n > 0 else v_half + 0.5 * dt * a
         u_new = u + dt * v_new
 
         # 4. energies at t_n
-        v_n = 0.5 * (v_half + v_new) if n > 0 else np.zeros(ndof)
+        v_n = 0.5 * (v_half + v_new) if n > 0 else v_half
         e_kin = s * 0.5 * float(np.dot(pl.m_dof, v_n * v_n))
         if surface:
             v_S = body.velocity(dt)
@@ -440,6 +457,9 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         else:
             e_imp = 0.5 * body.m_s * body.vS * body.vS if body is not None else 0.0
             e_con = body.law.energy(body.F) if body is not None else 0.0
+        if wall is not None:
+            e_con = wall.energy
+            wall_row = wall.reading(u)
         total = e_kin + e_imp + s * strain_energy + s * plastic_work + s * hg_energy + e_con
         imbalance = balance.record(n, t, total, W_ext, dt, dt_crit)
         if n % CHECK_EVERY == 0 or last:
@@ -461,6 +481,8 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             elif body is not None:
                 d_c = -u[2 * body.datum + 1]
                 row += [body.dS - d_c, body.dS, body.vS]
+            if wall is not None:
+                row += list(wall_row)
             row += [u[top_uy], u[mid_uy], u[bot_uy]]
             for pi, p in enumerate(probe_pts):
                 sx = stress[p]
@@ -498,6 +520,12 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         row[-1] = balance.ratio(row[-1])
     summary = _summary(scene, pl, material, body, contact, balance, totals, n, dt, dt_crit,
                        stop_reason)
+    if wall is not None:
+        ivs = contact.intervals
+        release = ivs[-1][1] if ivs and load == 0.0 else None
+        eqps = float(np.max(material.k)) if scene.material.plasticity is not None else None
+        summary["wall"] = wall.summary(u, v_new, totals["peak_F"], release, wall_row[1],
+                                       scene.plate, eqps)
     return Result(columns, rows, summary)
 
 

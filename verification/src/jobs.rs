@@ -374,6 +374,10 @@ fn load_text(load: &Load) -> String {
             "uniform traction on the top surface, normal {} Pa, shear {} Pa, for {} s",
             t.normal, t.shear, t.duration
         ),
+        Load::Wall(w) => format!(
+            "the body at {} m/s onto a rigid frictionless wall at y = 0",
+            w.velocity
+        ),
     }
 }
 

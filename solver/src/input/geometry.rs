@@ -76,6 +76,6 @@ pub fn validated(
     match choices.load {
         Load::Impactor(_) => refuse("axisymmetric needs load.impactor.contact: surface (the nodal coupling's contact law is the plane-strain line law; the surface coupling's nose, revolved, is a sphere)"),
         Load::Traction(_) => refuse("axisymmetric runs an impactor with contact: surface or a pulse on the axis; a traction load is plane-strain only for now"),
-        Load::SurfaceImpactor(_) | Load::Pulse(_) => Ok(geometry),
+        Load::SurfaceImpactor(_) | Load::Pulse(_) | Load::Wall(_) => Ok(geometry),
     }
 }

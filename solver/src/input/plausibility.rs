@@ -202,7 +202,7 @@ impl Finder<'_> {
         let radius = match &s.load {
             Load::Impactor(i) => Some(i.nose_radius),
             Load::SurfaceImpactor(i) => Some(i.nose_radius),
-            Load::Pulse(_) | Load::Traction(_) => None,
+            Load::Pulse(_) | Load::Traction(_) | Load::Wall(_) => None,
         };
         if let Some(r) = radius.filter(|r| *r > NOSE_RADIUS_MAX) {
             self.warn("load.impactor.nose_radius", shown(r), format!(

@@ -78,7 +78,7 @@ pub struct PlateFile {
     pub thickness: Num,
     /// Support of the two ends (default clamped).
     #[serde(default)]
-    pub ends: Ends,
+    pub ends: Option<Spanned<Ends>>,
 }
 
 /// How the ends of the plate (x = 0 and x = L) are held.
@@ -92,6 +92,9 @@ pub enum Ends {
     Roller,
     /// `u_y = 0`, `u_x` free (plane S waves through the thickness).
     Slider,
+    /// No support: the end (the rim in the axisymmetric geometry) is a free surface (a body
+    /// in flight, e.g. a bar onto a rigid wall).
+    Free,
 }
 
 /// `material`: `density` kg/m^3, `youngs_modulus` Pa, `poisson_ratio` (-), optional `plasticity`.
@@ -230,6 +233,16 @@ pub enum LoadFile {
     Impactor(ImpactorFile),
     Pulse(PulseFile),
     Traction(TractionFile),
+    Wall(WallFile),
+}
+
+/// `wall: {velocity: m/s}`: the whole body starts at `velocity` toward a rigid, frictionless
+/// wall in the plane y = 0 that its bottom face touches at t = 0 (`ALGORITHM.md` section 5c);
+/// needs `plate.ends: free`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallFile {
+    pub velocity: Num,
 }
 
 /// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s
@@ -591,6 +604,15 @@ pub enum Load {
     SurfaceImpactor(SurfaceImpactor),
     Pulse(Pulse),
     Traction(Traction),
+    /// The body flying onto the rigid wall y = 0.
+    Wall(Wall),
+}
+
+/// The rigid planar wall y = 0 (`load: {wall}`): the body's initial velocity toward it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Wall {
+    /// m/s toward the wall (the body moves along -y)
+    pub velocity: f64,
 }
 
 /// The rigid nose in frictionless penalty contact with the plate's top surface (`contact:
@@ -800,7 +822,15 @@ impl Scene {
     pub fn impactor(&self) -> Option<&Impactor> {
         match &self.load {
             Load::Impactor(i) => Some(i),
-            Load::SurfaceImpactor(_) | Load::Pulse(_) | Load::Traction(_) => None,
+            Load::SurfaceImpactor(_) | Load::Pulse(_) | Load::Traction(_) | Load::Wall(_) => None,
+        }
+    }
+
+    /// The rigid wall, if the scene flies onto one.
+    pub fn wall(&self) -> Option<&Wall> {
+        match &self.load {
+            Load::Wall(w) => Some(w),
+            _ => None,
         }
     }
 
@@ -817,8 +847,18 @@ impl Scene {
         match &self.load {
             Load::Impactor(i) => Some((i.mass, i.velocity)),
             Load::SurfaceImpactor(i) => Some((i.mass, i.velocity)),
-            Load::Pulse(_) | Load::Traction(_) => None,
+            Load::Pulse(_) | Load::Traction(_) | Load::Wall(_) => None,
         }
+    }
+}
+
+/// The name of `ends` in scenes.
+fn ends_name(ends: Ends) -> &'static str {
+    match ends {
+        Ends::Clamped => "clamped",
+        Ends::Roller => "roller",
+        Ends::Slider => "slider",
+        Ends::Free => "free",
     }
 }
 
@@ -969,12 +1009,19 @@ impl<'a> Validator<'a> {
             length: self.check(&file.plate.length, "plate.length", POSITIVE)?,
             width: self.check(&file.plate.width, "plate.width", POSITIVE)?,
             thickness: self.check(&file.plate.thickness, "plate.thickness", POSITIVE)?,
-            ends: file.plate.ends,
+            ends: file
+                .plate
+                .ends
+                .as_ref()
+                .map_or_else(Ends::default, |e| e.value),
         };
         let material = self.material(file.material)?;
         let mesh = self.mesh(&file.mesh)?;
         let load = self.load(file.load, &plate)?;
         let time = self.time(&file.time)?;
+        if let Load::Wall(_) = load {
+            self.wall_scene(&file.plate, &file.mesh, &file.time)?;
+        }
         let output = self.output(&file.output, &plate)?;
         let choices = geometry::Choices {
             model: mesh.model,
@@ -1251,7 +1298,49 @@ impl<'a> Validator<'a> {
                 duration: self.check(&p.duration, "load.pulse.duration", POSITIVE)?,
             }),
             LoadFile::Impactor(i) => self.impactor(&i, plate)?,
+            LoadFile::Wall(w) => Load::Wall(Wall {
+                velocity: self.check(&w.velocity, "load.wall.velocity", POSITIVE)?,
+            }),
         })
+    }
+
+    /// What the wall needs of the rest of the scene: a free body (`plate.ends: free`), the
+    /// half model (the symmetry line is the bar's axis or mid-plane: the full model has no
+    /// x support with free ends) and a fixed end time (the wall force may touch zero while
+    /// the bar still rolls on the wall: `after_contact` could stop a run early).
+    fn wall_scene(&self, plate: &PlateFile, mesh: &MeshFile, time: &TimeFile) -> Result<()> {
+        let why_free = "must be `free` with load: {wall}: the body flies onto the wall and nothing holds it (clamped, roller and slider ends would pin it in the air)";
+        match &plate.ends {
+            Some(e) if e.value != Ends::Free => {
+                return self.fail(e, "plate.ends", ends_name(e.value), why_free)
+            }
+            None => {
+                return self.fail(
+                    &plate.length,
+                    "plate.ends",
+                    "clamped (the default)",
+                    why_free,
+                )
+            }
+            Some(_) => {}
+        }
+        if mesh.model == Model::Full {
+            return self.fail(
+                &mesh.nx,
+                "mesh.model",
+                "full",
+                "must be `half` with load: {wall}: the symmetry line is the bar's axis (axisymmetric) or mid-plane, and the full model's free ends leave x unsupported",
+            );
+        }
+        if let EndFile::AfterContact(_) = time.end.value {
+            return self.fail(
+                &time.end,
+                "time.end",
+                "{after_contact}",
+                "must be a time (s) with load: {wall}: the wall force may pass through zero while the bar is still on the wall, so after_contact could stop the run early",
+            );
+        }
+        Ok(())
     }
 
     /// `load.impactor` under its coupling: the nodal one's law and nodes, or the surface

@@ -102,6 +102,7 @@ impl PlateMesh {
             Ends::Clamped => (true, true),
             Ends::Roller => (true, false),
             Ends::Slider => (false, true),
+            Ends::Free => (false, false),
         };
         for j in 0..=ny {
             let support = |dofs: &mut Vec<bool>, n: usize| {

@@ -146,6 +146,63 @@ pub struct Summary {
     /// Absent when there are none.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// The rigid wall's results (`load: {wall}` only, so that other summaries keep their bits).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall: Option<WallSummary>,
+}
+
+/// `summary.json`'s `wall`: what an analyst of a Taylor test reads (forces N and energies J of
+/// the whole ring, or of `plate.width` in plane strain; lengths m). The wall force's history is
+/// the `contact_force_N` column.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WallSummary {
+    /// The largest wall force, N (the first step's is the bottom row's stop: `2 m_b V / dt`).
+    #[serde(rename = "peak_force_N")]
+    pub peak_force: f64,
+    /// When the body left the wall for good, s; null while it is still on it at the end.
+    #[serde(rename = "release_time_s")]
+    pub release_time: Option<f64>,
+    /// The top axis node's current height at the end: the bar's length on the axis, m.
+    #[serde(rename = "final_length_m")]
+    pub final_length: f64,
+    /// `final_length_m / plate.thickness` (-).
+    pub length_ratio: f64,
+    /// The largest current distance from the axis, at the end, of a node that touched the wall
+    /// (the foot; the half-width in plane strain), m.
+    #[serde(rename = "foot_radius_m")]
+    pub foot_radius: f64,
+    /// `foot_radius_m / (plate.length / 2)` (-).
+    pub foot_radius_ratio: f64,
+    /// The largest distance from the axis of a node touching the wall during the run, m.
+    #[serde(rename = "max_foot_radius_m")]
+    pub max_foot_radius: f64,
+    /// The body's mean velocity away from the wall at the end (momentum over mass), m/s.
+    #[serde(rename = "rebound_velocity_mps")]
+    pub rebound_velocity: f64,
+    /// The kinetic energy the wall took out (its dissipation, the `contact_energy_J` column), J.
+    #[serde(rename = "dissipated_energy_J")]
+    pub dissipated_energy: f64,
+    /// The largest equivalent plastic strain at the end (plastic materials; else null).
+    pub max_equivalent_plastic_strain: Option<f64>,
+}
+
+impl WallSummary {
+    fn new(scene: &Scene, t: &RunTotals) -> Option<WallSummary> {
+        let w = t.wall?;
+        let radius = 0.5 * scene.plate.length;
+        Some(WallSummary {
+            peak_force: t.peak_force,
+            release_time: w.release_time,
+            final_length: w.length,
+            length_ratio: w.length / scene.plate.thickness,
+            foot_radius: w.foot_radius,
+            foot_radius_ratio: w.foot_radius / radius,
+            max_foot_radius: w.max_touching_radius,
+            rebound_velocity: w.rebound_velocity,
+            dissipated_energy: w.dissipated,
+            max_equivalent_plastic_strain: w.max_plastic_strain,
+        })
+    }
 }
 
 impl Summary {
@@ -159,6 +216,7 @@ impl Summary {
         let contact_law = match &scene.load {
             Load::Pulse(_) => "pulse".to_string(),
             Load::Traction(_) => "traction".to_string(),
+            Load::Wall(_) => "wall".to_string(),
             Load::SurfaceImpactor(i) => match i.contact.enforcement {
                 Enforcement::Kinematic => "surface(kinematic)".to_string(),
                 Enforcement::Penalty => {
@@ -221,6 +279,7 @@ impl Summary {
                 .and_then(|r| r.thermal())
                 .map(|th| th.taylor_quinney * t.final_energy.plastic_work),
             warnings: scene.warnings.iter().map(ToString::to_string).collect(),
+            wall: WallSummary::new(scene, t),
         }
     }
 }

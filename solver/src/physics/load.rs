@@ -23,11 +23,11 @@ pub struct PrescribedLoad {
 }
 
 impl PrescribedLoad {
-    /// The prescribed load of a scene, if it has one (an impactor has none).
+    /// The prescribed load of a scene, if it has one (an impactor and the wall have none).
     pub fn from_scene(load: &Load, plate: &Plate, mesh: &PlateMesh) -> Option<PrescribedLoad> {
         let s = mesh.symmetry_factor;
         match load {
-            Load::Impactor(_) | Load::SurfaceImpactor(_) => None,
+            Load::Impactor(_) | Load::SurfaceImpactor(_) | Load::Wall(_) => None,
             Load::Pulse(p) => Some(PrescribedLoad {
                 pattern: vec![(2 * mesh.top + 1, -1.0 / s)],
                 magnitude: p.force,

@@ -8,6 +8,7 @@ use crate::input::scene::Scene;
 use crate::mesh::PlateMesh;
 use crate::physics::element::Formulation;
 use crate::physics::material::{von_mises, Stress};
+use crate::physics::rigid_wall::WallTotals;
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::schedule::Schedule;
 
@@ -140,6 +141,8 @@ pub struct RunTotals {
     pub stop: StopReason,
     pub initial_energy: Energies,
     pub final_energy: Energies,
+    /// The rigid wall's results (wall scenes only).
+    pub wall: Option<WallTotals>,
 }
 
 /// What a probe reads at `t_n`.
@@ -162,6 +165,8 @@ pub(crate) struct Sample<'a> {
     pub impactor: Option<[f64; 3]>,
     /// Contact half-width (m) and nodes in contact; surface coupling only.
     pub patch: Option<[f64; 2]>,
+    /// Radius of the nodes touching the wall and the bar's length on the axis, m; wall only.
+    pub wall: Option<[f64; 2]>,
     /// Mid-span `u_y` at the top, mid-plane and bottom, m.
     pub uy: [f64; 3],
     pub energies: &'a Energies,
@@ -218,6 +223,7 @@ impl<'s> Recorder<'s> {
             stop: StopReason::EndTime,
             initial_energy: Energies::default(),
             final_energy: Energies::default(),
+            wall: None,
         };
         Ok(Recorder {
             rows: Schedule::new(scene.output.every),
@@ -284,6 +290,9 @@ impl<'s> Recorder<'s> {
             }
             if let Some(patch) = at.patch {
                 row.extend(patch);
+            }
+            if let Some(wall) = at.wall {
+                row.extend(wall);
             }
             row.extend([top, mid, bottom]);
         }
@@ -361,6 +370,9 @@ pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
     }
     if scene.surface_impactor().is_some() {
         c.extend(["contact_half_width_m", "nodes_in_contact"].map(String::from));
+    }
+    if scene.wall().is_some() {
+        c.extend(["foot_radius_m", "bar_length_m"].map(String::from));
     }
     c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
     let rate = scene.rate_law();

@@ -18,6 +18,7 @@ use crate::physics::impactor::RigidImpactor;
 use crate::physics::load::PrescribedLoad;
 use crate::physics::material::Elastic;
 use crate::physics::material::{von_mises, ConstitutiveModel, Stress};
+use crate::physics::rigid_wall::{RigidWall, WallTotals};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::history::{
     locate_probes, HistorySink, Probe, ProbeReading, Recorder, RunTotals, Sample, StopReason,
@@ -292,7 +293,10 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         watch.step(n, t, stop.is_some(), &stepper)?;
         if let Some(reason) = stop {
             let balance = stepper.balance;
+            let released = recorder.separated_at().filter(|_| applied == 0.0);
+            let wall = stepper.wall_totals(released, &energies);
             let mut totals = recorder.finish(n, reason, &at, stepper.initial_energy, &balance)?;
+            totals.wall = wall;
             totals.max_temperature = stepper.model.max_temperature();
             return Ok(totals);
         }
@@ -472,6 +476,11 @@ struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     impact: Option<Impact<'a>>,
     /// The surface coupling's nose and impactor.
     surface: Option<SurfaceImpact>,
+    /// The rigid wall the body flies onto, with its reading at `t_n`: the radius of the nodes
+    /// touching it and the top axis node's height (the bar's length), m.
+    wall: Option<(RigidWall, [f64; 2])>,
+    /// The kinetic energy at `t_0`, J (0 unless the body starts moving: the wall).
+    initial_kinetic: f64,
     prescribed: Option<PrescribedLoad>,
     /// Node whose `u_y` the force acts on.
     force_node: usize,
@@ -510,6 +519,15 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let datum = spec.map_or(mesh.top, |i| mesh.mid_span_node(i.indentation_datum));
         let force_node = spec.map_or(mesh.top, |i| mesh.mid_span_node(i.force_node));
         let ndof = model.inverse_mass.len();
+        let mut v = vec![0.0; ndof];
+        let wall = scene.wall().map(|spec| {
+            let wall = RigidWall::new(mesh, scene.plate.thickness);
+            wall.launch(spec.velocity, &model.inverse_mass, &mut v);
+            (wall, [0.0; 2])
+        });
+        let initial_kinetic = wall
+            .as_ref()
+            .map_or(0.0, |(w, _)| w.kinetic_energy(&model.mass, &v));
         Stepper {
             scene,
             mesh,
@@ -527,8 +545,10 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             datum,
             energy_consistent: force_node == datum || surface.is_some(),
             surface,
+            wall,
+            initial_kinetic,
             u: vec![0.0; ndof],
-            v: vec![0.0; ndof],
+            v,
             f_int: vec![0.0; ndof],
             model,
             force: 0.0,
@@ -550,6 +570,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             let h = velocity_step(n, self.dt);
             self.force = surface.solve(self.dt, h, &self.u, &self.v, &self.f_int);
         }
+        if let Some((wall, _)) = &mut self.wall {
+            let h = velocity_step(n, self.dt);
+            let (mass, inverse_mass) = (&self.model.mass, &self.model.inverse_mass);
+            let state = (&self.u[..], &self.v[..], &self.f_int[..]);
+            self.force = wall.solve((self.dt, h), state, mass, inverse_mass);
+        }
         self.prescribed
             .as_ref()
             .map_or(self.force, |l| l.magnitude_at(t))
@@ -561,10 +587,11 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
     fn half_step(&mut self, n: u64, applied: f64, element_energy: ElementEnergy) -> Energies {
         let s = self.s;
         self.plastic_work += s * element_energy.plastic_work;
-        match (&self.prescribed, &self.surface) {
-            (Some(load), _) => load.subtract_from(applied, &mut self.f_int),
-            (None, Some(surface)) => surface.subtract_from(&mut self.f_int),
-            (None, None) => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
+        match (&self.prescribed, &self.surface, &self.wall) {
+            (Some(load), _, _) => load.subtract_from(applied, &mut self.f_int),
+            (None, Some(surface), _) => surface.subtract_from(&mut self.f_int),
+            (None, None, Some((wall, _))) => wall.subtract_from(&mut self.f_int),
+            (None, None, None) => self.f_int[2 * self.force_node + 1] += applied / s, // f_int - f_ext, f_ext = -F/s on u_y
         }
         let update = VelocityUpdate {
             v: &mut self.v,
@@ -574,16 +601,27 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             h: velocity_step(n, self.dt),
         };
         let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
+        if let Some((wall, reading)) = &mut self.wall {
+            *reading = [
+                wall.touching_radius(&self.u),
+                wall.height(self.mesh.top, &self.u),
+            ];
+        }
         Energies {
-            plate_kinetic: if n > 0 { 0.5 * s * twice_kinetic } else { 0.0 },
+            plate_kinetic: if n > 0 {
+                0.5 * s * twice_kinetic
+            } else {
+                self.initial_kinetic
+            },
             impactor_kinetic: self.impactor_kinetic(),
             strain: s * element_energy.strain,
             plastic_work: self.plastic_work,
             hourglass: s * element_energy.hourglass,
-            contact: match (&self.impact, &self.surface) {
-                (Some(i), _) => i.law.energy(self.force),
-                (None, Some(surface)) => surface.energy(),
-                (None, None) => 0.0,
+            contact: match (&self.impact, &self.surface, &self.wall) {
+                (Some(i), _, _) => i.law.energy(self.force),
+                (None, Some(surface), _) => surface.energy(),
+                (None, None, Some((wall, _))) => wall.energy(),
+                (None, None, None) => 0.0,
             },
             external_work: self.external_work,
         }
@@ -683,6 +721,27 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         })
     }
 
+    /// The wall's results at the end (`t_n`, its `energies`; `released`: when the body left the
+    /// wall, if it is off it now): `None` without a wall.
+    fn wall_totals(&self, released: Option<f64>, energies: &Energies) -> Option<WallTotals> {
+        let (wall, [_, length]) = self.wall.as_ref()?;
+        let model = &*self.model;
+        let n_points = model.formulation.n_elements() * F::POINTS;
+        let eqps = (0..n_points).map(|k| {
+            let state = model.state(k / F::POINTS, k % F::POINTS);
+            model.material.equivalent_plastic_strain(&state)
+        });
+        Some(WallTotals {
+            release_time: released,
+            length: *length,
+            foot_radius: wall.foot_radius(&self.u),
+            max_touching_radius: wall.max_touching_radius(),
+            rebound_velocity: RigidWall::mean_velocity(&model.mass, &self.v),
+            dissipated: energies.contact,
+            max_plastic_strain: self.scene.is_plastic().then(|| eqps.fold(0.0, f64::max)),
+        })
+    }
+
     /// What the recorder writes down at `t_n`.
     fn sample<'e>(
         &self,
@@ -702,6 +761,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
                 (None, None) => None,
             },
             patch: surface.map(SurfaceImpact::patch),
+            wall: self.wall.as_ref().map(|(_, reading)| *reading),
             uy: [uy(self.mesh.top), uy(self.mesh.mid), uy(self.mesh.bottom)],
             energies,
             imbalance,

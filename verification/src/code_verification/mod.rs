@@ -28,6 +28,7 @@ pub mod table_path;
 pub mod thick_cylinder;
 pub mod thread_invariance;
 pub mod viscoplastic_truss;
+pub mod wall_bar;
 
 use std::collections::BTreeMap;
 
@@ -36,7 +37,7 @@ use serde_json::Value;
 use crate::data::RunData;
 
 /// The builtins of this module.
-pub const NAMES: [&str; 23] = [
+pub const NAMES: [&str; 24] = [
     "mms-space",
     "mms-time",
     "impactor-spring",
@@ -60,6 +61,7 @@ pub const NAMES: [&str; 23] = [
     "table-strain-path",
     "thread-invariance",
     "probe-point",
+    "wall-bar",
 ];
 
 /// Runs one of [`NAMES`]; `None` if the name is not one of them.
@@ -88,6 +90,7 @@ pub fn run(name: &str, p: &BTreeMap<String, Value>) -> Option<Result<RunData, St
         "table-strain-path" => table_path::table_strain_path(p),
         "thread-invariance" => thread_invariance::thread_invariance(p),
         "probe-point" => probe_point::probe_point(p),
+        "wall-bar" => wall_bar::wall_bar(p),
         _ => return None,
     })
 }

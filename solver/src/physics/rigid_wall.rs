@@ -1,0 +1,281 @@
+//! The rigid, frictionless planar wall `y = 0` (`load: {wall}`, `ALGORITHM.md` section 5c),
+//! enforced kinematically as explicit codes do (LS-DYNA's `*RIGIDWALL_PLANAR`, Abaqus/Explicit's
+//! kinematic contact): at step 2 of `t_n`, every node whose contact-free prediction
+//! `y_{n+1} = Y + u_n + dt v_free` would cross the wall gets the upward force
+//! `R_n = m (v_wall - v_free) / h` that makes `v_{n+1/2} = v_wall = -(Y + u_n) / dt`, so it
+//! lands on the wall at `t_{n+1}` (and, once there, stays with zero normal velocity); a node
+//! whose prediction stays above the wall gets no force (unilateral: it leaves). Only `u_y` is
+//! touched (frictionless). Any node may reach the wall.
+//!
+//! The wall takes kinetic energy out (a perfectly inelastic impact of each node that lands): its
+//! impulse `h R_n` at step `n` changes the node's velocity from `v_{n-1/2}` to `v_{n+1/2}`, and
+//! so its kinetic energy by `W_n = h R_n (v_{n-1/2} + v_{n+1/2}) / 2` (exactly: the half-step
+//! kinetic energies differ by the impulse times the mean of the velocities before and after).
+//! The wall's dissipation `D = -s sum W` (J, LS-DYNA's "rigidwall energy") is the kinetic energy
+//! it removed; a node resting on the wall (`v = 0` before and after) costs nothing, as a rigid
+//! wall that does not move does no work. At `t_n` it holds the `W_k` of the steps before and
+//! the share of `W_n` before `t_n`: half for `n >= 1` (the impulse acts over
+//! `[t_{n-1/2}, t_{n+1/2}]`), none at `t_0` (over `[t_0, t_{1/2}]`). Forces N and energies J of
+//! the modelled part times the symmetry factor `s` (whole ring in the axisymmetric geometry,
+//! whole `plate.width` in plane strain).
+
+use crate::mesh::PlateMesh;
+
+/// Height (m) below which a node counts as touching the wall, over the body's thickness: a
+/// landed node sits at `Y + u_y = 0` up to the round-off of that sum (~1e-16 of the
+/// thickness), far below this.
+const TOUCH_FRACTION: f64 = 1e-9;
+
+/// The wall and its forces at `t_n`.
+#[derive(Debug, Clone)]
+pub struct RigidWall {
+    /// Reference position of each node, m.
+    reference: Vec<[f64; 2]>,
+    /// The half model's symmetry line (the axis in the axisymmetric geometry), m.
+    axis_x: f64,
+    /// A node lower than this touches the wall, m.
+    touch: f64,
+    /// Symmetry factor `s`.
+    s: f64,
+    /// `R_n` on each node's `u_y`, N (modelled part), `>= 0`.
+    force: Vec<f64>,
+    /// `sum_{k<n} W_k`, whole body, J.
+    work_before: f64,
+    /// `W_n`, whole body, J.
+    work_now: f64,
+    /// The share of `W_n` before `t_n` (0 at `t_0`, then 1/2).
+    share_now: f64,
+    /// Whether each node has touched the wall (the foot).
+    touched: Vec<bool>,
+    /// The largest [`RigidWall::touching_radius`] so far, m.
+    max_touching: f64,
+}
+
+/// What the wall reports at the end of a run (SI units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallTotals {
+    /// When the body left the wall for good, s (`None`: still on it at the end).
+    pub release_time: Option<f64>,
+    /// The top axis node's current height (the bar's length on the axis), m.
+    pub length: f64,
+    /// [`RigidWall::foot_radius`] at the end, m.
+    pub foot_radius: f64,
+    /// The largest radius of a node touching the wall during the run, m.
+    pub max_touching_radius: f64,
+    /// The body's mean velocity away from the wall at the end (`v_{n+1/2}`), m/s.
+    pub rebound_velocity: f64,
+    /// The kinetic energy the wall took out, J.
+    pub dissipated: f64,
+    /// The largest equivalent plastic strain over the points at the end (plastic only).
+    pub max_plastic_strain: Option<f64>,
+}
+
+impl RigidWall {
+    pub fn new(mesh: &PlateMesh, thickness: f64) -> RigidWall {
+        let n = mesh.mesh.n_nodes();
+        RigidWall {
+            reference: mesh.mesh.coords.clone(),
+            axis_x: mesh.mid_span_x(),
+            touch: TOUCH_FRACTION * thickness,
+            s: mesh.symmetry_factor,
+            force: vec![0.0; n],
+            work_before: 0.0,
+            work_now: 0.0,
+            share_now: 0.0,
+            touched: vec![false; n],
+            max_touching: 0.0,
+        }
+    }
+
+    /// The initial velocity `-velocity` (m/s, toward the wall) on every free `u_y`.
+    pub fn launch(&self, velocity: f64, inverse_mass: &[f64], v: &mut [f64]) {
+        for node in 0..self.reference.len() {
+            if inverse_mass[2 * node + 1] != 0.0 {
+                v[2 * node + 1] = -velocity;
+            }
+        }
+    }
+
+    /// The kinetic energy of `v` (m/s) on the nodal masses `mass` (kg), whole body, J.
+    pub fn kinetic_energy(&self, mass: &[f64], v: &[f64]) -> f64 {
+        let twice: f64 = (0..mass.len())
+            .map(|n| mass[n] * (v[2 * n] * v[2 * n] + v[2 * n + 1] * v[2 * n + 1]))
+            .sum();
+        0.5 * self.s * twice
+    }
+
+    /// Step 2 at `t_n` (`dt` s; `h` the velocity step, s; `u`, `v`, `f_int` the body's `u_n`,
+    /// `v_{n-1/2}` and `f_int - f_ext` without the wall; `mass` kg, `inverse_mass` per dof
+    /// 1/kg): the wall's forces `R_n` and their work `W_n`. Returns their sum, whole body, N.
+    pub fn solve(
+        &mut self,
+        (dt, h): (f64, f64),
+        (u, v, f_int): (&[f64], &[f64], &[f64]),
+        mass: &[f64],
+        inverse_mass: &[f64],
+    ) -> f64 {
+        self.work_before += self.work_now;
+        self.share_now = if h < dt { 0.0 } else { 0.5 };
+        let (mut total, mut work) = (0.0, 0.0);
+        for (node, &[_, y0]) in self.reference.iter().enumerate() {
+            let dof = 2 * node + 1;
+            self.force[node] = 0.0;
+            if inverse_mass[dof] == 0.0 {
+                continue;
+            }
+            let height = y0 + u[dof];
+            let v_free = v[dof] - h * f_int[dof] * inverse_mass[dof];
+            if height + dt * v_free < 0.0 {
+                let v_wall = -height / dt;
+                self.force[node] = mass[node] * (v_wall - v_free) / h;
+                total += self.force[node];
+                work += h * self.force[node] * 0.5 * (v[dof] + v_wall);
+            }
+        }
+        self.work_now = self.s * work;
+        self.s * total
+    }
+
+    /// Step 2: the wall's forces at `t_n` as external forces, subtracted from `f_int - f_ext`.
+    pub fn subtract_from(&self, f_int: &mut [f64]) {
+        for (node, &r) in self.force.iter().enumerate() {
+            f_int[2 * node + 1] -= r;
+        }
+    }
+
+    /// The kinetic energy the wall has taken out up to `t_n` (its dissipation), whole body, J.
+    pub fn energy(&self) -> f64 {
+        -(self.work_before + self.share_now * self.work_now)
+    }
+
+    /// The nodes touching the wall at `u` (m): marks them as the foot, and returns the largest
+    /// current distance of one from the axis (the foot radius in the ring, the half-width in
+    /// plane strain), m (0 when none touches).
+    pub fn touching_radius(&mut self, u: &[f64]) -> f64 {
+        let mut radius: f64 = 0.0;
+        for (node, &[x0, y0]) in self.reference.iter().enumerate() {
+            if y0 + u[2 * node + 1] <= self.touch {
+                self.touched[node] = true;
+                radius = radius.max(self.axis_x - (x0 + u[2 * node]));
+            }
+        }
+        self.max_touching = self.max_touching.max(radius);
+        radius
+    }
+
+    /// The largest [`RigidWall::touching_radius`] so far, m.
+    pub fn max_touching_radius(&self) -> f64 {
+        self.max_touching
+    }
+
+    /// The foot's radius at `u` (m): the largest current distance from the axis of a node that
+    /// has touched the wall (after the bar leaves the wall, still its foot), m.
+    pub fn foot_radius(&self, u: &[f64]) -> f64 {
+        self.reference
+            .iter()
+            .enumerate()
+            .filter(|(node, _)| self.touched[*node])
+            .map(|(node, &[x0, _])| self.axis_x - (x0 + u[2 * node]))
+            .fold(0.0, f64::max)
+    }
+
+    /// The current height of `node` at `u`, m.
+    pub fn height(&self, node: usize, u: &[f64]) -> f64 {
+        self.reference[node][1] + u[2 * node + 1]
+    }
+
+    /// The body's mean velocity along +y (away from the wall) of `v` (m/s) on `mass` (kg).
+    pub fn mean_velocity(mass: &[f64], v: &[f64]) -> f64 {
+        let momentum: f64 = (0..mass.len()).map(|n| mass[n] * v[2 * n + 1]).sum();
+        momentum / mass.iter().sum::<f64>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The wall on a column of masses: one node stopped, one landing mid-step; the dissipation
+    //! against the kinetic energy it removes (closed form: all of it, `m V^2 / 2`).
+    use super::*;
+
+    /// A one-element mesh 1 m x 1 m: nodes 0, 1 on the bottom (y = 0), 2, 3 on top.
+    fn wall() -> RigidWall {
+        let plate = crate::input::scene::Plate {
+            length: 2.0,
+            width: 1.0,
+            thickness: 1.0,
+            ends: crate::input::scene::Ends::Free,
+        };
+        let settings = crate::input::scene::MeshSettings {
+            nx: 1,
+            ny: 2,
+            element: crate::input::scene::ElementKind::Q4Sri,
+            model: crate::input::scene::Model::Half,
+            grading: 1.0,
+            hourglass: 0.05,
+            distortion: 0.0,
+        };
+        RigidWall::new(&PlateMesh::new(&plate, &settings), 1.0)
+    }
+
+    /// Free masses (no internal force) at `V` onto the wall, `steps` steps of `dt`; returns the
+    /// dissipation and the kinetic energy left (mean velocities), J, whole body.
+    fn fall(height_of_top: f64, steps: usize) -> (f64, f64, f64) {
+        let mut w = wall();
+        let n = w.reference.len();
+        let (dt, velocity) = (0.1, 1.0);
+        let mass = vec![2.0; n];
+        let inverse_mass: Vec<f64> = (0..2 * n).map(|_| 0.5).collect();
+        let mut u = vec![0.0; 2 * n];
+        // Lift the top row so that it lands in the middle of a step.
+        for r in w.reference.iter_mut().filter(|r| r[1] > 0.0) {
+            r[1] = height_of_top;
+        }
+        let mut v = vec![0.0; 2 * n];
+        w.launch(velocity, &inverse_mass, &mut v);
+        let initial = w.kinetic_energy(&mass, &v);
+        let f_int = vec![0.0; 2 * n];
+        let mut old = v.clone();
+        for step in 0..steps {
+            let h = if step == 0 { 0.5 * dt } else { dt };
+            let mut f = f_int.clone();
+            w.solve((dt, h), (&u, &v, &f), &mass, &inverse_mass);
+            w.subtract_from(&mut f);
+            old.copy_from_slice(&v);
+            for d in 0..2 * n {
+                v[d] -= h * f[d] * inverse_mass[d];
+            }
+            for d in 0..2 * n {
+                u[d] += dt * v[d];
+            }
+        }
+        let mean: Vec<f64> = old.iter().zip(&v).map(|(a, b)| 0.5 * (a + b)).collect();
+        (initial, w.energy(), w.kinetic_energy(&mass, &mean))
+    }
+
+    #[test]
+    fn the_wall_takes_all_the_kinetic_energy_of_free_masses() {
+        // The bottom row stops at t_0; the top row lands after 0.35 s (between steps 3 and 4).
+        let (initial, dissipated, left) = fall(0.35, 12);
+        assert!(left.abs() < 1e-15, "left {left}");
+        assert!(
+            (dissipated - initial).abs() < 1e-14 * initial,
+            "{dissipated} vs {initial}"
+        );
+        // Mid-flight the balance closes too (the top row not yet landed).
+        let (initial, dissipated, left) = fall(0.35, 3);
+        assert!((dissipated + left - initial).abs() < 1e-14 * initial);
+    }
+
+    #[test]
+    fn a_node_above_the_wall_with_no_push_gets_no_force() {
+        let mut w = wall();
+        let n = w.reference.len();
+        let (mass, inverse_mass) = (vec![1.0; n], vec![1.0; 2 * n]);
+        let (u, f) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+        // Moving up from the wall: unilateral, no pull.
+        let v: Vec<f64> = (0..2 * n)
+            .map(|d| if d % 2 == 1 { 1.0 } else { 0.0 })
+            .collect();
+        assert_eq!(w.solve((0.1, 0.1), (&u, &v, &f), &mass, &inverse_mass), 0.0);
+    }
+}

@@ -1,0 +1,107 @@
+//! The rigid wall (`load: {wall}`) in whole runs, against invariants of the method and of the
+//! physics (the 1-D closed forms are the verification case `wave-speed/wall-bar`):
+//! - impulse = momentum change: the trapezoid of the wall force (with `dt/2` at the first step)
+//!   is the sum of its impulses, so `impulse = M (v0 + v_rebound)` to round-off;
+//! - the Taylor bar scene (`verification/scenes/taylor-bar.yaml`, small kinematics) runs, its
+//!   balance closes, it shortens and its foot spreads, and its bits do not depend on the thread
+//!   count;
+//! - the scenes the wall cannot run are refused with the file, line, column, field and value.
+
+use std::path::Path;
+
+use impact_solver::{simulate, Outcome, Quiet, Scene};
+
+const TAYLOR: &str = include_str!("../../verification/scenes/taylor-bar.yaml");
+
+/// An elastic plane-strain bar (nu = 0: 1-D), 0.1 m long, 10 mm wide, at 10 m/s.
+const BAR: &str = "
+plate: {length: 0.01, width: 1.0, thickness: 0.1, ends: free}
+material: {density: 7800.0, youngs_modulus: 200.0e9, poisson_ratio: 0.0}
+mesh: {nx: 2, ny: 40, element: q4-sri}
+load: {wall: {velocity: 10.0}}
+time: {end: 6.0e-5, dt: {cfl: 0.9}}
+";
+
+fn run(text: &str) -> Outcome {
+    let scene = Scene::from_yaml(text, Path::new("wall.yaml")).unwrap();
+    simulate(&scene, &mut Quiet).unwrap()
+}
+
+fn refusal(text: &str) -> String {
+    Scene::from_yaml(text, Path::new("wall.yaml"))
+        .unwrap_err()
+        .to_string()
+}
+
+#[test]
+fn the_wall_impulse_is_the_bars_momentum_change() {
+    let o = run(BAR);
+    let wall = o.summary.wall.as_ref().expect("a wall summary");
+    let mass = 7800.0 * 0.01 * 0.1 * 1.0;
+    let change = mass * (10.0 + wall.rebound_velocity);
+    // Measured 1.8e-16: the same sum in another order.
+    assert!(
+        (o.summary.impulse - change).abs() < 1e-12 * change,
+        "{} vs {change}",
+        o.summary.impulse
+    );
+    // The elastic bar leaves the wall (2 L/c = 39.5 us, one step late at most) and flies on.
+    let release = wall.release_time.expect("released");
+    assert!((release - 3.95e-5).abs() < 1e-6, "{release}");
+    // Measured 5.5e-3 (the bottom row's landing and the coarse front's ringing).
+    assert!(o.summary.max_energy_balance_error < 0.02);
+    // The wall took the bottom row's kinetic energy: (1/80 of the mass) v0^2 / 2 = 4.875 J.
+    assert!((wall.dissipated_energy - 4.875).abs() < 1e-9, "{wall:?}");
+}
+
+#[test]
+fn the_taylor_bar_scene_runs_shortens_and_spreads_on_any_thread_count() {
+    let on = |threads| impact_solver::workers::with_threads(threads, || run(TAYLOR));
+    let (one, two) = (on(1), on(2));
+    assert_eq!(one.history.values.len(), two.history.values.len());
+    assert!(one
+        .history
+        .values
+        .iter()
+        .zip(&two.history.values)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    let wall = one.summary.wall.as_ref().unwrap();
+    // Measured 5.2e-4.
+    assert!(one.summary.max_energy_balance_error < 5e-3);
+    assert!(
+        wall.final_length < 0.0324 && wall.foot_radius > 0.0032,
+        "{wall:?}"
+    );
+    assert!(
+        wall.max_equivalent_plastic_strain.unwrap() > 0.1,
+        "{wall:?}"
+    );
+    // Still on the wall at 6 us, moving toward it.
+    assert!(wall.release_time.is_none() && wall.rebound_velocity < 0.0);
+}
+
+#[test]
+fn scenes_the_wall_cannot_run_are_refused_with_their_place() {
+    let clamped = refusal(&BAR.replace(", ends: free", ""));
+    assert!(
+        clamped.contains("wall.yaml:2:") && clamped.contains("plate.ends"),
+        "{clamped}"
+    );
+    let roller = refusal(&BAR.replace("ends: free", "ends: roller"));
+    assert!(
+        roller.contains("plate.ends") && roller.contains("roller"),
+        "{roller}"
+    );
+    let full = refusal(&BAR.replace("element: q4-sri", "element: q4-sri, model: full"));
+    assert!(
+        full.contains("mesh.model") && full.contains("wall.yaml:4:"),
+        "{full}"
+    );
+    let after = refusal(&BAR.replace("end: 6.0e-5", "end: {after_contact: 1.0e-6}"));
+    assert!(
+        after.contains("time.end") && after.contains("wall.yaml:6:"),
+        "{after}"
+    );
+    let slow = refusal(&BAR.replace("velocity: 10.0", "velocity: -1.0"));
+    assert!(slow.contains("load.wall.velocity"), "{slow}");
+}
