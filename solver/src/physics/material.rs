@@ -310,17 +310,29 @@ impl FlowLaw<f64> for FlowCurve {
     fn flow_stress(&self, k: f64) -> f64 {
         self.piece(k).0
     }
-    /// Piece by piece of the curve.
+    /// Piece by piece of the curve: each pass either returns or moves to the next piece, so
+    /// the passes are at most the pieces. After a breakpoint `b` the next piece is looked up
+    /// at `max(k + dk, b)`: `k + (b - k)` can round below `b` (k = 0.0021765534325648541,
+    /// b = 0.01 gives 0.009999999999999998), and the lookup at `k + dk` alone found the same
+    /// piece again, for ever (found by the batched-kernel test's random fields).
     fn plastic_increment(&self, q: f64, k: f64, _flow_at_k: f64, three_mu: f64) -> f64 {
         let mut dk = 0.0;
-        loop {
-            let (sy, h, next) = self.piece(k + dk);
+        let mut at = k;
+        for _ in 0..self.points.len() {
+            let (sy, h, next) = self.piece(at);
             let x = (q - three_mu * dk - sy) * (1.0 / (three_mu + h));
             match next {
-                Some(b) if k + dk + x > b => dk = b - k,
+                Some(b) if k + dk + x > b => {
+                    dk = b - k;
+                    at = (k + dk).max(b);
+                }
                 _ => return dk + x,
             }
         }
+        // Past the last breakpoint: the tail piece (no next breakpoint) returns above, so
+        // this is reached only on a curve whose pieces do not advance (not one the scene
+        // reader builds); the increment to the last breakpoint is the bounded answer.
+        dk
     }
 }
 
@@ -621,6 +633,29 @@ mod tests {
         let k = 2.0 * mu * 0.004 / (3.0 * mu + h);
         assert_relative_eq!(s2.eqps, k, max_relative = 1e-12);
         assert_relative_eq!(von_mises(&r2.stress), 250e6 + h * k, max_relative = 1e-12);
+    }
+
+    /// A return that starts where `k + (b - k)` rounds below the breakpoint `b` (the values
+    /// the batched-kernel test's random fields met: k = 0.0021765534325648541, b = 0.01)
+    /// ends, on the piece after `b`, and satisfies the consistency condition there. (Before
+    /// the fix the lookup found the piece ending at `b` again and looped for ever.)
+    #[test]
+    fn a_return_across_a_breakpoint_that_rounds_short_ends() {
+        let k = 0.0021765534325648541;
+        assert!(k + (0.01 - k) < 0.01, "the rounding this test needs");
+        let curve = FlowCurve::new(
+            320e6,
+            &Hardening::Table(vec![(0.0, 320e6), (0.01, 400e6), (0.05, 450e6)]),
+            207e9,
+        )
+        .unwrap();
+        let three_mu = 3.0 * 207e9 / 2.6;
+        let q = 340e6 + three_mu * 0.02;
+        let dk = curve.plastic_increment(q, k, curve.flow_stress(k), three_mu);
+        assert!(k + dk > 0.01 && k + dk < 0.05, "{dk}");
+        // q - 3 mu dk = flow(k + dk): relative 1e-12, ~1e4 round-offs of the O(1e8) terms.
+        let residual = q - three_mu * dk - curve.flow_stress(k + dk);
+        assert!(residual.abs() < 1e-12 * q, "{residual}");
     }
 
     #[test]
