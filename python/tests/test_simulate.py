@@ -265,7 +265,7 @@ def test_ctrl_c_stops_a_run_within_a_second(small_scene, tmp_path, to_folder):
 
 
 def test_the_rigid_wall_from_a_dict_equals_the_cli(cli, tmp_path):
-    """`load: {wall}` (the Taylor bar scene, small kinematics) given as a dict: the summary with
+    """`load: {wall}` (the Taylor bar scene, finite deformation in the ring) given as a dict: the summary with
     its `wall` object and the history (`foot_radius_m`, `bar_length_m`) bit for bit the CLI's;
     a clamped wall scene refused with the CLI's message (field, value, what is allowed)."""
     from conftest import ROOT

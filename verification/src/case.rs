@@ -84,6 +84,9 @@ pub enum RefKind {
     /// A bound set by the requirement itself (e.g. a GCI below 5 %).
     #[serde(rename = "acceptance")]
     Acceptance,
+    /// Published results of other codes for a benchmark of the field (the band they span).
+    #[serde(rename = "other codes")]
+    OtherCodes,
 }
 
 impl RefKind {
@@ -96,6 +99,7 @@ impl RefKind {
             RefKind::Invariant => "invariant",
             RefKind::Regression => "regression",
             RefKind::Acceptance => "acceptance",
+            RefKind::OtherCodes => "other codes",
         }
     }
 }

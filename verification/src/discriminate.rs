@@ -1,5 +1,5 @@
 //! Discriminating power (issue 10, section 1): every evidence check of a case (reference kind
-//! paper, calibration, invariant or acceptance) re-evaluated on the results of trivial or
+//! paper, calibration, invariant, acceptance or other codes) re-evaluated on the results of trivial or
 //! wrong models declared in the case's `wrong_models`: a rigid wall (closed form), another
 //! scene read in place of one (the elastic plate in the elasto-plastic row), or the case's
 //! scenes re-run with overrides (the plate with E x 0.5 and x 2). A check that a trivial
@@ -16,12 +16,13 @@ use crate::jobs::{JobResult, RunData};
 
 /// The reference kinds whose checks the table covers (analytical: the physics bounds of
 /// issue 27, e.g. the rigid-plastic band, whose wrong models must fail).
-pub const KINDS: [RefKind; 5] = [
+pub const KINDS: [RefKind; 6] = [
     RefKind::Analytical,
     RefKind::Paper,
     RefKind::Calibration,
     RefKind::Invariant,
     RefKind::Acceptance,
+    RefKind::OtherCodes,
 ];
 
 /// One wrong model's value for one check.

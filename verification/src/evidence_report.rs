@@ -56,6 +56,7 @@ fn kinds_table(results: &Value) -> String {
             "analytical" => "code verification (closed form)",
             "independent code" => "code-to-code (same discrete method)",
             "regression" => "regression (pinned earlier result)",
+            "other codes" => "benchmark: the band of other codes' published results",
             _ => "",
         };
         let _ = writeln!(
