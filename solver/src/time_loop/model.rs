@@ -129,18 +129,15 @@ pub fn build_on<U: UseModel>(
         kernel,
         path,
     };
-    match scene.kinematics {
-        Kinematics::Small => with_formulation!(formulation, f => with_material(f, request, user)),
-        Kinematics::Finite => {
-            no_stiffness_matrix(
-                scene,
-                kernel,
-                ("kinematics", "finite"),
-                "the stiffness-matrix kernel is a small-strain one: use the stress path",
-            )?;
-            with_formulation!(formulation, f => with_material(UpdatedLagrangian(f), request, user))
-        }
+    if scene.kinematics == Kinematics::Finite {
+        no_stiffness_matrix(
+            scene,
+            kernel,
+            ("kinematics", "finite"),
+            "the stiffness-matrix kernel is a small-strain one: use the stress path",
+        )?;
     }
+    with_formulation!(formulation, f => with_kinematics(f, request, user))
 }
 
 /// The refusal of the stiffness-matrix kernel where the scene's `(field, value)` rules it
@@ -181,17 +178,17 @@ fn with_ring<U: UseModel>(
         path,
     };
     match scene.mesh.element {
-        ElementKind::Q4Full => with_ring_kinematics(
+        ElementKind::Q4Full => with_kinematics(
             Axisymmetric::<FullQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
         ),
-        ElementKind::Q4Sri => with_ring_kinematics(
+        ElementKind::Q4Sri => with_kinematics(
             Axisymmetric::<SelectiveQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
         ),
-        ElementKind::Q4OnePoint => with_ring_kinematics(
+        ElementKind::Q4OnePoint => with_kinematics(
             Axisymmetric::<OnePointQ4>::new(&mesh.mesh, axis, hourglass, p_modulus)?,
             request,
             user,
@@ -199,8 +196,9 @@ fn with_ring<U: UseModel>(
     }
 }
 
-/// The ring element `formulation` in the scene's kinematics.
-fn with_ring_kinematics<F: MaterialOf + FiniteResponse, U: UseModel>(
+/// `formulation` (plane or ring) in the scene's kinematics: as it is in small strain, under
+/// [`UpdatedLagrangian`] in finite deformation.
+fn with_kinematics<F: MaterialOf + FiniteResponse, U: UseModel>(
     formulation: F,
     request: Request,
     user: U,

@@ -47,6 +47,7 @@ use impact_solver::axisymmetric::{Axisymmetric, RingElement};
 use impact_solver::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
 use impact_solver::finite_element::{FiniteResponse, UpdatedLagrangian};
 use impact_solver::finite_material::Finite;
+use impact_solver::input::geometry::Geometry;
 use impact_solver::integrator::PlateModel;
 use impact_solver::material::{ConstitutiveModel, Elastic, Stress, VonMises};
 use impact_solver::mesh::PlateMesh;
@@ -56,7 +57,7 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::space_time::element;
-use super::{param, plastic_material, with_history, PlasticMaterial};
+use super::{param, param_geometry, plastic_material, with_history, PlasticMaterial};
 use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -418,19 +419,7 @@ pub fn finite_strain_path(p: &Params) -> Result<RunData, String> {
     let steps = param(p, "steps", 2000.0)? as usize;
     let mesh = mapped_mesh(SIDE, SIDE, 4, 4, 0.1)?;
     let kind = element(p)?;
-    let ring = match p
-        .get("geometry")
-        .and_then(Value::as_str)
-        .unwrap_or("plane-strain")
-    {
-        "plane-strain" => false,
-        "axisymmetric" => true,
-        other => {
-            return Err(format!(
-                "param geometry: {other:?} is not plane-strain or axisymmetric"
-            ))
-        }
-    };
+    let ring = param_geometry(p, Geometry::PlaneStrain)? == Geometry::Axisymmetric;
     if ring != path.is_ring() {
         return Err(format!("param path: {path:?} does not run in this geometry (radial-expansion and upsetting are the axisymmetric geometry's, the others plane strain's)"));
     }

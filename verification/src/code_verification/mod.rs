@@ -32,6 +32,7 @@ pub mod wall_bar;
 
 use std::collections::BTreeMap;
 
+use impact_solver::input::geometry::Geometry;
 use serde_json::Value;
 
 use crate::data::RunData;
@@ -127,6 +128,21 @@ pub(crate) fn param(p: &BTreeMap<String, Value>, k: &str, default: f64) -> Resul
             .as_f64()
             .ok_or_else(|| format!("param {k}: {v} is not a number")),
     }
+}
+
+/// The `geometry` parameter, `plane-strain` or `axisymmetric` (or `default`).
+pub(crate) fn param_geometry(
+    p: &BTreeMap<String, Value>,
+    default: Geometry,
+) -> Result<Geometry, String> {
+    let name = match p.get("geometry") {
+        None => return Ok(default),
+        Some(v) => v.as_str().ok_or("param geometry: not a string")?,
+    };
+    [Geometry::PlaneStrain, Geometry::Axisymmetric]
+        .into_iter()
+        .find(|g| g.name() == name)
+        .ok_or_else(|| format!("param geometry: {name:?} is not plane-strain or axisymmetric"))
 }
 
 /// A list of numbers parameter (or its default).

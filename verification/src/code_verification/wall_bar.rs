@@ -18,9 +18,10 @@
 
 use std::collections::BTreeMap;
 
+use impact_solver::input::geometry::Geometry;
 use serde_json::Value;
 
-use super::{param, with_history};
+use super::{param, param_geometry, with_history};
 use crate::data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -134,23 +135,12 @@ fn measure(
 }
 
 pub fn wall_bar(p: &Params) -> Result<RunData, String> {
-    let geometry = match p.get("geometry") {
-        None => "axisymmetric",
-        Some(v) => v.as_str().ok_or("param geometry: not a string")?,
-    };
-    let axisymmetric = match geometry {
-        "axisymmetric" => true,
-        "plane-strain" => false,
-        other => {
-            return Err(format!(
-                "param geometry: `{other}`, expected `axisymmetric` or `plane-strain`"
-            ))
-        }
-    };
+    let geometry = param_geometry(p, Geometry::Axisymmetric)?;
+    let axisymmetric = geometry == Geometry::Axisymmetric;
     let ny = param(p, "ny", 80.0)? as usize;
     let model_e = param(p, "model_youngs_modulus", BAR.youngs_modulus)?;
     let force_factor = param(p, "force_factor", 1.0)?;
-    let text = scene(&BAR, geometry, ny, model_e);
+    let text = scene(&BAR, geometry.name(), ny, model_e);
     let o = super::run_scene_text(&text, "(builtin wall-bar)", &mut impact_solver::Quiet)?;
     let metrics = measure(&o, &BAR, axisymmetric, force_factor)?;
     Ok(with_history(metrics, o.history))
