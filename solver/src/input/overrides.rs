@@ -19,9 +19,9 @@ const ONE_OF: [&str; 5] = [
     "time.end",
 ];
 
-/// Keys beside the variant of a one-of map (`time.dt: {cfl | fixed, estimate}`): kept when
+/// Keys beside the variant of a one-of map (`time.dt: {cfl | fixed, estimate, update}`): kept when
 /// the variant changes, and setting one keeps the variant.
-const BESIDE_THE_VARIANT: [(&str, &str); 1] = [("time.dt", "estimate")];
+const BESIDE_THE_VARIANT: [(&str, &str); 2] = [("time.dt", "estimate"), ("time.dt", "update")];
 
 /// Sets `value` at the dotted `key` of the YAML `tree`, creating the maps on the way
 /// (the scene's parser then refuses keys it does not know).

@@ -482,7 +482,8 @@ impl<'de> serde::de::Visitor<'de> for EndVisitor {
     }
 }
 
-/// `dt: {cfl: c | fixed: s, estimate: element | global}` (exactly one of `cfl`, `fixed`).
+/// `dt: {cfl: c | fixed: s, estimate: element | global, update: once | every-step}` (exactly
+/// one of `cfl`, `fixed`).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DtFile {
@@ -495,6 +496,31 @@ pub struct DtFile {
     /// Which estimate of the stable step (default `element`).
     #[serde(default)]
     pub estimate: Estimate,
+    /// When the stable step is estimated (default `once`, at the start).
+    #[serde(default)]
+    pub update: Option<Spanned<DtUpdate>>,
+}
+
+/// When the stable step is estimated (`time.dt.update`; `ALGORITHM.md` section 6b).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DtUpdate {
+    /// Once, on the mesh as made: the step is fixed for the run (the paper's model).
+    #[default]
+    Once,
+    /// At every step, on the deformed mesh (finite deformation): `time.dt.cfl` times the
+    /// estimate at the start scaled by the deformed elements' ratio.
+    EveryStep,
+}
+
+impl DtUpdate {
+    /// The name in scenes and summaries.
+    pub fn name(self) -> &'static str {
+        match self {
+            DtUpdate::Once => "once",
+            DtUpdate::EveryStep => "every-step",
+        }
+    }
 }
 
 /// `output: {every: s, probes: {NAME: {x: m, y: m}}, fields: {every: s}}`.
@@ -688,6 +714,8 @@ pub struct TimeSettings {
     pub dt: DtChoice,
     /// How the stable step is estimated (`time.dt.estimate`).
     pub dt_estimate: Estimate,
+    /// When the stable step is estimated (`time.dt.update`).
+    pub dt_update: DtUpdate,
     /// Where `time.dt` is written, for the stable-step error.
     pub dt_location: SourceLocation,
     pub allow_unstable_dt: bool,
@@ -1018,7 +1046,7 @@ impl<'a> Validator<'a> {
         let material = self.material(file.material)?;
         let mesh = self.mesh(&file.mesh)?;
         let load = self.load(file.load, &plate)?;
-        let time = self.time(&file.time)?;
+        let time = self.time(&file.time, file.kinematics)?;
         if let Load::Wall(_) = load {
             self.wall_scene(&file.plate, &file.mesh, &file.time)?;
         }
@@ -1515,7 +1543,7 @@ impl<'a> Validator<'a> {
         })
     }
 
-    fn time(&self, t: &TimeFile) -> Result<TimeSettings> {
+    fn time(&self, t: &TimeFile, kinematics: Kinematics) -> Result<TimeSettings> {
         let limit = match &t.limit {
             None => DEFAULT_TIME_LIMIT,
             Some(l) => self.check(l, "time.limit", POSITIVE)?,
@@ -1553,10 +1581,31 @@ impl<'a> Validator<'a> {
                 )
             }
         };
+        let dt_update =
+            t.dt.value
+                .update
+                .as_ref()
+                .map_or(DtUpdate::Once, |u| u.value);
+        if let Some(update) =
+            t.dt.value
+                .update
+                .as_ref()
+                .filter(|u| u.value == DtUpdate::EveryStep)
+        {
+            let why = match (dt, kinematics) {
+                (DtChoice::Fixed(_), _) => Some("a fixed step is never re-estimated: give time.dt.cfl (a fraction of the stable estimate) with update: every-step"),
+                (_, Kinematics::Small) => Some("under small kinematics the mesh keeps its shape, so its stable step is the one at the start: use update: once, or kinematics: finite"),
+                _ => None,
+            };
+            if let Some(why) = why {
+                return self.fail(update, "time.dt.update", "every-step", why);
+            }
+        }
         Ok(TimeSettings {
             end,
             dt,
             dt_estimate: t.dt.value.estimate,
+            dt_update,
             dt_location,
             allow_unstable_dt,
         })

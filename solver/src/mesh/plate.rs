@@ -20,6 +20,12 @@ impl Mesh {
         self.elements[e].map(|n| self.coords[n as usize])
     }
 
+    /// The mean of element `e`'s corners as made, m (where messages say an element is).
+    pub fn element_centre(&self, e: usize) -> [f64; 2] {
+        let c = self.element_coords(e);
+        [0, 1].map(|d| 0.25 * (c[0][d] + c[1][d] + c[2][d] + c[3][d]))
+    }
+
     /// The first element whose deformed shape (coordinates + `u`, 2 dofs per node) has a
     /// corner with a non-positive Jacobian: inverted or collapsed.
     pub fn first_inverted(&self, u: &[f64]) -> Option<usize> {

@@ -7,7 +7,8 @@ use serde::Serialize;
 
 use crate::input::geometry::Geometry;
 use crate::input::scene::{
-    ContactLawChoice, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model, Scene,
+    ContactLawChoice, DtUpdate, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model,
+    Scene,
 };
 use crate::kernels::fallback::Report;
 use crate::mesh::PlateMesh;
@@ -83,6 +84,17 @@ pub struct Summary {
     pub cfl: f64,
     #[serde(rename = "dt_critical_s")]
     pub dt_critical: f64,
+    /// `every-step` when the step was re-estimated at every step (`time.dt.update`; then
+    /// `dt_s`, `cfl` and `dt_critical_s` are the first step's); absent when it was fixed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dt_update: Option<&'static str>,
+    /// The smallest step of a re-estimated run (the last, cut to land on the end, not
+    /// counted), s.
+    #[serde(rename = "dt_min_s", skip_serializing_if = "Option::is_none")]
+    pub dt_min: Option<f64>,
+    /// The largest step of a re-estimated run, s.
+    #[serde(rename = "dt_max_s", skip_serializing_if = "Option::is_none")]
+    pub dt_max: Option<f64>,
     #[serde(rename = "final_time_s")]
     pub final_time: f64,
     pub stop_reason: StopReason,
@@ -252,6 +264,9 @@ impl Summary {
             impulse_momentum_error,
             cfl: t.dt / t.dt_critical,
             dt_critical: t.dt_critical,
+            dt_update: t.dt_range.map(|_| DtUpdate::EveryStep.name()),
+            dt_min: t.dt_range.map(|r| r[0]),
+            dt_max: t.dt_range.map(|r| r[1]),
             final_time: t.final_time,
             stop_reason: t.stop,
             element: scene.mesh.element,

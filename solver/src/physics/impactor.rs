@@ -66,10 +66,11 @@ impl CentralDifferenceImpactor {
         }
     }
 
-    /// The velocity at `t_n` under the force `F_n` (N), m/s.
-    pub fn velocity(&self, dt: f64, force: f64) -> f64 {
+    /// The velocity at `t_n` under the force `F_n` (N), m/s: the mean of `v_{n-1/2}` and
+    /// `v_{n+1/2}` for the velocity step `h` (s; the step itself when steps are equal).
+    pub fn velocity(&self, h: f64, force: f64) -> f64 {
         if self.started {
-            self.half_step_velocity - 0.5 * dt * force / self.mass
+            self.half_step_velocity - 0.5 * h * force / self.mass
         } else {
             self.half_step_velocity
         }
@@ -80,9 +81,9 @@ impl CentralDifferenceImpactor {
         self.displacement + dt * self.half_step_velocity
     }
 
-    /// From `t_n` to `t_{n+1}` under `F_n` (N).
-    pub fn advance(&mut self, dt: f64, force: f64) {
-        let h = if self.started { dt } else { 0.5 * dt };
+    /// From `t_n` to `t_{n+1}` (`dt` s) under `F_n` (N), with the velocity step `h` (s:
+    /// `dt / 2` at the first step, `dt` when steps are equal).
+    pub fn advance(&mut self, (dt, h): (f64, f64), force: f64) {
         self.half_step_velocity -= h * force / self.mass;
         self.displacement += dt * self.half_step_velocity;
         self.started = true;
@@ -143,7 +144,7 @@ mod tests {
                 body.half_step_velocity - dt * f / m
             };
             x += dt * v_half;
-            body.advance(dt, f);
+            body.advance((dt, if n == 0 { 0.5 * dt } else { dt }), f);
             assert_eq!(body.half_step_velocity, v_half);
             assert_eq!(body.displacement, x);
         }

@@ -45,6 +45,8 @@ pub struct RigidWall {
     work_now: f64,
     /// The share of `W_n` before `t_n` (0 at `t_0`, then 1/2).
     share_now: f64,
+    /// Whether a step was solved (the next is not `t_0`).
+    started: bool,
     /// Whether each node has touched the wall (the foot).
     touched: Vec<bool>,
     /// The largest [`RigidWall::touching_radius`] so far, m.
@@ -82,6 +84,7 @@ impl RigidWall {
             work_before: 0.0,
             work_now: 0.0,
             share_now: 0.0,
+            started: false,
             touched: vec![false; n],
             max_touching: 0.0,
         }
@@ -115,7 +118,8 @@ impl RigidWall {
         inverse_mass: &[f64],
     ) -> f64 {
         self.work_before += self.work_now;
-        self.share_now = if h < dt { 0.0 } else { 0.5 };
+        self.share_now = if self.started { 0.5 } else { 0.0 };
+        self.started = true;
         let (mut total, mut work) = (0.0, 0.0);
         for (node, &[_, y0]) in self.reference.iter().enumerate() {
             let dof = 2 * node + 1;

@@ -4,7 +4,7 @@
 //! (impulse, peak force, largest displacements and von Mises stresses).
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::Scene;
+use crate::input::scene::{DtUpdate, Scene};
 use crate::mesh::PlateMesh;
 use crate::physics::element::Formulation;
 use crate::physics::material::{von_mises, Stress};
@@ -134,8 +134,12 @@ pub struct RunTotals {
     /// Highest temperature over the plate's points at the end (heating only rises), K.
     pub max_temperature: Option<f64>,
     pub max_balance_error: f64,
+    /// The first step, s.
     pub dt: f64,
     pub dt_critical: f64,
+    /// The smallest and largest step of a run whose step is re-estimated at every step
+    /// (`time.dt.update: every-step`), s; `None` when the step is fixed.
+    pub dt_range: Option<[f64; 2]>,
     pub n_steps: u64,
     pub final_time: f64,
     pub stop: StopReason,
@@ -186,6 +190,8 @@ pub(crate) struct Recorder<'s> {
     separated_at: Option<f64>,
     /// The force at the previous step, N (None before the first).
     last_force: Option<f64>,
+    /// Whether rows carry the step (`dt_s`: `time.dt.update: every-step`).
+    step_column: bool,
     totals: RunTotals,
 }
 
@@ -218,6 +224,7 @@ impl<'s> Recorder<'s> {
             max_balance_error: 0.0,
             dt,
             dt_critical,
+            dt_range: None,
             n_steps: 0,
             final_time: 0.0,
             stop: StopReason::EndTime,
@@ -226,22 +233,26 @@ impl<'s> Recorder<'s> {
             wall: None,
         };
         Ok(Recorder {
-            rows: Schedule::new(scene.output.every),
+            rows: match scene.time.dt_update {
+                DtUpdate::Once => Schedule::new(scene.output.every),
+                DtUpdate::EveryStep => Schedule::in_time(scene.output.every),
+            },
             row: Vec::with_capacity(columns.len()),
             probes,
             sink,
             in_contact: false,
             separated_at: None,
             last_force: None,
+            step_column: scene.time.dt_update == DtUpdate::EveryStep,
             totals,
         })
     }
 
     /// Contact intervals: `[first t_n with F > 0, first later t_n with F = 0]`; the peak force;
-    /// the impulse's trapezoid `(F_{n-1} + F_n) dt / 2` (N s) from the previous step.
-    pub(crate) fn contact(&mut self, t: f64, force: f64) {
+    /// the impulse's trapezoid `(F_{n-1} + F_n) dt / 2` (N s) over the previous step `dt` (s).
+    pub(crate) fn contact(&mut self, t: f64, force: f64, dt: f64) {
         if let Some(last) = self.last_force {
-            self.totals.impulse += 0.5 * (last + force) * self.totals.dt;
+            self.totals.impulse += 0.5 * (last + force) * dt;
         }
         self.last_force = Some(force);
         if force > 0.0 {
@@ -263,8 +274,9 @@ impl<'s> Recorder<'s> {
         self.separated_at
     }
 
-    /// Records step `n` (`last`: the run stops after it): the largest displacements and probe
-    /// stresses (and rates), and a history row when one is due. `read` reads a probe at `t_n`.
+    /// Records step `n` (`last`: the run stops after it; `dt` its step, s): the largest
+    /// displacements and probe stresses (and rates), and a history row when one is due.
+    /// `read` reads a probe at `t_n`.
     pub(crate) fn sample(
         &mut self,
         n: u64,
@@ -279,11 +291,14 @@ impl<'s> Recorder<'s> {
         if let (Some(max), Some(patch)) = (&mut self.totals.max_patch, at.patch) {
             *max = [max[0].max(patch[0]), max[1].max(patch[1])];
         }
-        let want_row = self.rows.due(n, dt) || last;
+        let want_row = self.rows.due_at(n, at.t, dt) || last;
         let row = &mut self.row;
         row.clear();
         if want_row {
             row.push(at.t);
+            if self.step_column {
+                row.push(dt);
+            }
             row.push(at.force);
             if let Some(impactor) = at.impactor {
                 row.extend(impactor);
@@ -357,7 +372,11 @@ impl<'s> Recorder<'s> {
 
 /// The history's columns, in `ALGORITHM.md` section 8's order.
 pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
-    let mut c: Vec<String> = vec!["time_s".into(), "contact_force_N".into()];
+    let mut c: Vec<String> = vec!["time_s".into()];
+    if scene.time.dt_update == DtUpdate::EveryStep {
+        c.push("dt_s".into());
+    }
+    c.push("contact_force_N".into());
     if scene.impactor_motion().is_some() {
         c.extend(
             [

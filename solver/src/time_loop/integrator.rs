@@ -5,7 +5,7 @@
 use std::result::Result as StdResult;
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::{DtChoice, End, Impactor, Kinematics, Scene};
+use crate::input::scene::{DtChoice, DtUpdate, End, Impactor, Kinematics, Scene};
 use crate::kernels::assembly::Assembly;
 use crate::kernels::elastic_screen::ElasticScreen;
 use crate::kernels::stiffness::LinearKernel;
@@ -25,6 +25,7 @@ use crate::time_loop::history::{
 };
 use crate::time_loop::schedule::{steps_to, Schedule};
 use crate::time_loop::stable_step::{self, Estimate, Spring};
+use crate::time_loop::step_size::{self, at_end, EveryStep};
 use crate::time_loop::surface_coupling::SurfaceImpact;
 
 /// Energy error beyond which any run is stopped as unstable: total energy more than this
@@ -271,16 +272,20 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     let mut watch = Watch::new(scene, observer, &clock);
     let mut recorder = Recorder::new(scene, probes, sink, dt, dt_critical, dt_plate)?;
     let mut stepper = Stepper::new(scene, mesh, model, dt, dt_critical, surface);
+    if scene.time.dt_update == DtUpdate::EveryStep {
+        stepper.every_step = Some(EveryStep::new(dt / dt_critical, dt_plate, dt));
+    }
     let mut n: u64 = 0;
     loop {
-        let t = n as f64 * dt;
-        // 1: internal forces at u_n; 2: the force on the plate at t_n.
+        let t = stepper.time(n);
+        // 1: internal forces at u_n; the step from t_n; 2: the force on the plate at t_n.
         let element_energy = stepper
             .model
             .internal_forces(&stepper.u, &mut stepper.f_int);
-        let applied = stepper.applied(n, t);
-        recorder.contact(t, applied);
-        let stop = clock.stop(n, t, dt, recorder.separated_at());
+        stepper.choose_step(n, t, clock.end_time)?;
+        let applied = stepper.applied(t);
+        recorder.contact(t, applied, stepper.previous_dt);
+        let stop = clock.stop(n, t, stepper.dt, recorder.separated_at());
         // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
         let energies = stepper.half_step(n, applied, element_energy);
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
@@ -289,7 +294,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             stepper.check_deformed_step(n, t, dt_plate)?;
         }
         let at = stepper.sample(t, applied, &energies, imbalance);
-        recorder.sample(n, dt, stop.is_some(), &at, |p| stepper.probe(p))?;
+        recorder.sample(n, stepper.dt, stop.is_some(), &at, |p| stepper.probe(p))?;
         watch.step(n, t, stop.is_some(), &stepper)?;
         if let Some(reason) = stop {
             let balance = stepper.balance;
@@ -297,6 +302,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             let wall = stepper.wall_totals(released, &energies);
             let mut totals = recorder.finish(n, reason, &at, stepper.initial_energy, &balance)?;
             totals.wall = wall;
+            totals.dt_range = stepper.every_step.as_ref().map(|e| e.range);
             totals.max_temperature = stepper.model.max_temperature();
             return Ok(totals);
         }
@@ -347,6 +353,8 @@ struct Clock {
     /// s
     end_time: f64,
     last_step: u64,
+    /// Whether the step changes (`time.dt.update: every-step`): the end is read on the time.
+    in_time: bool,
     /// s after separation (`time.end: {after_contact}`).
     after_contact: Option<f64>,
 }
@@ -360,13 +368,19 @@ impl Clock {
         Clock {
             end_time,
             last_step: steps_to(end_time, dt),
+            in_time: scene.time.dt_update == DtUpdate::EveryStep,
             after_contact,
         }
     }
 
-    /// Whether the run stops after step `n` (at `t`), and why.
+    /// Whether the run stops after step `n` (at `t`; `dt` the step from it, s), and why.
     fn stop(&self, n: u64, t: f64, dt: f64, separated_at: Option<f64>) -> Option<StopReason> {
-        if n >= self.last_step {
+        let reached = if self.in_time {
+            at_end(self.end_time, t, dt)
+        } else {
+            n >= self.last_step
+        };
+        if reached {
             return Some(if self.after_contact.is_some() {
                 StopReason::TimeLimit
             } else {
@@ -396,11 +410,13 @@ impl<'o> Watch<'o> {
     fn new(scene: &Scene, observer: &'o mut dyn Observer, clock: &Clock) -> Watch<'o> {
         let wants = observer.wants_fields();
         Watch {
-            frames: Schedule::new(if wants {
-                scene.output.fields_every
-            } else {
-                None
-            }),
+            frames: {
+                let every = wants.then_some(scene.output.fields_every).flatten();
+                match scene.time.dt_update {
+                    DtUpdate::Once => Schedule::new(every),
+                    DtUpdate::EveryStep => Schedule::in_time(every),
+                }
+            },
             wants_fields: wants && scene.output.fields_every.is_some(),
             progress_every: (clock.last_step / 200).max(1),
             end_time: clock.end_time,
@@ -417,7 +433,7 @@ impl<'o> Watch<'o> {
         last: bool,
         stepper: &Stepper<F, M>,
     ) -> Result<()> {
-        if self.wants_fields && (self.frames.due(n, stepper.dt) || last) {
+        if self.wants_fields && (self.frames.due_at(n, t, stepper.dt) || last) {
             let mut frame = field_frame(stepper.model, &stepper.u, &stepper.v, t);
             frame.contact_force = stepper
                 .surface
@@ -467,8 +483,14 @@ struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     scene: &'a Scene,
     mesh: &'a PlateMesh,
     model: &'a mut PlateModel<F, M>,
-    /// s
+    /// `dt_{n+1/2}`, the step from `t_n`, s.
     dt: f64,
+    /// `dt_{n-1/2}`, the step to `t_n`, s.
+    previous_dt: f64,
+    /// `h_n`, the velocity step at `t_n` ([`step_size::velocity_step`]), s.
+    h: f64,
+    /// The step re-estimated at every step (`time.dt.update: every-step`); `None`: fixed.
+    every_step: Option<EveryStep>,
     /// s
     dt_critical: f64,
     /// Symmetry factor `s`.
@@ -532,6 +554,9 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             scene,
             mesh,
             dt,
+            previous_dt: dt,
+            h: 0.5 * dt,
+            every_step: None,
             dt_critical,
             s: mesh.symmetry_factor,
             impact: spec.map(|i| Impact {
@@ -563,15 +588,64 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         }
     }
 
+    /// `t_n`, s: `n dt` for a fixed step (exactly: `t + dt` can round differently and
+    /// misplace the end of a pulse), the steps' sum when it changes.
+    fn time(&self, n: u64) -> f64 {
+        self.every_step
+            .as_ref()
+            .map_or(n as f64 * self.dt, |e| e.time)
+    }
+
+    /// `t_{n+1}` after step `n` at `t`, s ([`Stepper::time`]).
+    fn time_after(&self, n: u64, t: f64) -> f64 {
+        match self.every_step {
+            Some(_) => t + self.dt,
+            None => (n + 1) as f64 * self.dt,
+        }
+    }
+
+    /// The step from `t_n` (`t` s, the run's `end` s) and the velocity step at it
+    /// ([`step_size`]): under `time.dt.update: every-step` the stable estimate of the
+    /// deformed mesh at `u_n` ([`stable_step::deformed_ratio`] times the plate's first, with
+    /// the contact springs), given to the material too (its rates divide by it); an error
+    /// naming the element when it collapsed.
+    fn choose_step(&mut self, n: u64, t: f64, end: f64) -> Result<()> {
+        self.previous_dt = self.dt;
+        if let Some(every) = &mut self.every_step {
+            let (ratio, e) =
+                stable_step::deformed_ratio(&self.mesh.mesh, &self.reference_spreads, &self.u);
+            let plate = ratio * every.dt_plate;
+            let stable = self
+                .surface
+                .as_ref()
+                .map_or(plate, |c| c.stable_step(plate, &self.model.mass));
+            self.dt = every.next(stable, end).map_err(|step| {
+                let [x, y] = self.mesh.mesh.element_centre(e);
+                Error::Run {
+                    step: n,
+                    time_s: t,
+                    what: format!(
+                        "the stable step collapsed: element {e} (around x = {x:.4e} m, y = {y:.4e} m) is crushed to {ratio:.3e} of its stable length, giving a step of {step:.6e} s, below {} of the first ({:.6e} s): the mesh cannot follow this deformation (refine it where it crushes, or stop the run earlier)",
+                        step_size::SMALLEST_STEP_FRACTION,
+                        every.first
+                    ),
+                }
+            })?;
+            self.dt_critical = stable;
+            self.model.material.set_time_step(self.dt);
+        }
+        self.h = step_size::velocity_step(n, self.previous_dt, self.dt);
+        Ok(())
+    }
+
     /// The force on the plate at `t_n`: the contact force, or the prescribed load, N (after
     /// the internal forces at `u_n`: the surface coupling's kinematic solve reads them).
-    fn applied(&mut self, n: u64, t: f64) -> f64 {
+    fn applied(&mut self, t: f64) -> f64 {
+        let h = self.h;
         if let Some(surface) = &mut self.surface {
-            let h = velocity_step(n, self.dt);
             self.force = surface.solve(self.dt, h, &self.u, &self.v, &self.f_int);
         }
         if let Some((wall, _)) = &mut self.wall {
-            let h = velocity_step(n, self.dt);
             let (mass, inverse_mass) = (&self.model.mass, &self.model.inverse_mass);
             let state = (&self.u[..], &self.v[..], &self.f_int[..]);
             self.force = wall.solve((self.dt, h), state, mass, inverse_mass);
@@ -598,7 +672,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             f_int: &self.f_int,
             inverse_mass: &self.model.inverse_mass,
             mass: &self.model.mass,
-            h: velocity_step(n, self.dt),
+            h: self.h,
         };
         let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
         if let Some((wall, reading)) = &mut self.wall {
@@ -632,7 +706,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         match (&self.impact, &self.surface) {
             (Some(i), _) => i.body.kinetic_energy(),
             (None, Some(surface)) => {
-                let v = surface.body.velocity(self.dt, surface.force());
+                let v = surface.body.velocity(self.h, surface.force());
                 0.5 * surface.body.mass * v * v
             }
             (None, None) => 0.0,
@@ -677,14 +751,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let Some(e) = self.mesh.mesh.first_inverted(&self.u) else {
             return Ok(());
         };
-        let c = self.mesh.mesh.element_coords(e);
+        let [x, y] = self.mesh.mesh.element_centre(e);
         Err(Error::Run {
             step: n,
             time_s: t,
             what: format!(
-                "element {e} (around x = {:.4e} m, y = {:.4e} m) has inverted: {} (dt = {:.6e} s, {:.3} of the stable estimate)",
-                0.25 * (c[0][0] + c[1][0] + c[2][0] + c[3][0]),
-                0.25 * (c[0][1] + c[1][1] + c[2][1] + c[3][1]),
+                "element {e} (around x = {x:.4e} m, y = {y:.4e} m) has inverted: {} (dt = {:.6e} s, {:.3} of the stable estimate)",
                 match self.scene.kinematics {
                     Kinematics::Small => "the displacements are no longer small against the mesh (kinematics: finite follows large deformation)",
                     Kinematics::Finite => "it was crushed or turned inside out (a finer mesh, or q4-sri instead of q4-1pt, may carry the deformation)",
@@ -701,7 +773,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
     /// `time.allow_unstable_dt`).
     fn check_deformed_step(&self, n: u64, t: f64, dt_plate: f64) -> Result<()> {
         let small = self.scene.kinematics == Kinematics::Small;
-        if small || self.scene.time.allow_unstable_dt {
+        if small || self.scene.time.allow_unstable_dt || self.every_step.is_some() {
             return Ok(());
         }
         let (ratio, e) =
@@ -713,7 +785,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             step: n,
             time_s: t,
             what: format!(
-                "the deformed mesh's stable step fell below the run's: element {e} is compressed to {ratio:.3} of its stable length, giving {:.6e} s against dt = {:.6e} s (the step is fixed for the run: start with a smaller time.dt.cfl, about {:.2} of this one or less)",
+                "the deformed mesh's stable step fell below the run's: element {e} is compressed to {ratio:.3} of its stable length, giving {:.6e} s against dt = {:.6e} s (the step is fixed for the run: start with a smaller time.dt.cfl, about {:.2} of this one or less, or let the step follow the deformed mesh with time.dt.update: every-step)",
                 ratio * dt_plate,
                 self.dt,
                 ratio * dt_plate / self.dt
@@ -757,7 +829,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             force: applied,
             impactor: match (&self.impact, surface) {
                 (Some(i), _) => Some([i.alpha, i.body.displacement, i.body.velocity]),
-                (None, Some(c)) => Some(c.motion(self.dt, uy(self.mesh.top))),
+                (None, Some(c)) => Some(c.motion(self.h, uy(self.mesh.top))),
                 (None, None) => None,
             },
             patch: surface.map(SurfaceImpact::patch),
@@ -794,8 +866,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             dt,
         };
         dispatch(self.model.kernel_path.isa(), displace);
+        let t_next = self.time_after(n, t);
+        if let Some(every) = &mut self.every_step {
+            every.time = t_next;
+        }
         if let Some(surface) = &mut self.surface {
-            self.force = surface.advance(dt, &self.u);
+            self.force = surface.advance((dt, self.h), &self.u);
             return Ok(self.force);
         }
         let next_force = match &mut self.impact {
@@ -805,7 +881,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
                     .advance(dt, self.force, delta_c)
                     .map_err(|beyond| Error::Run {
                         step: n + 1,
-                        time_s: t + dt,
+                        time_s: t_next,
                         what: crate::physics::contact_failure::Failure {
                             scene: self.scene,
                             impactor: impact.spec,
@@ -818,12 +894,10 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
                         .explain(),
                     })?
             }
-            // t_{n+1} = (n + 1) dt exactly as the next step will compute it (t + dt can round
-            // differently and misplace the end of the pulse).
             None => self
                 .prescribed
                 .as_ref()
-                .map_or(0.0, |l| l.magnitude_at((n + 1) as f64 * dt)),
+                .map_or(0.0, |l| l.magnitude_at(t_next)),
         };
         if let Some(load) = &self.prescribed {
             let projection_after = load.projection(&self.u);
@@ -837,12 +911,6 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         };
         Ok(next_force)
     }
-}
-
-/// The velocity step of step `n`, s: `dt / 2` at the first (`v_{1/2} = dt/2 a_0`), else `dt`.
-fn velocity_step(n: u64, dt: f64) -> f64 {
-    let half = if n == 0 { 0.5 } else { 1.0 };
-    half * dt
 }
 
 /// Steps 2-3: `v += h a` with `a = -f_int / m` per dof (`h`: the velocity step, s); `run`

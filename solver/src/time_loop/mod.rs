@@ -14,4 +14,5 @@ pub mod model;
 pub mod progress;
 pub mod schedule;
 pub mod stable_step;
+pub mod step_size;
 pub mod surface_coupling;

@@ -4,16 +4,52 @@
 pub(crate) use crate::input::time_step::steps_to;
 
 /// A schedule of output steps every `every` s (every step when `None`): step 0 and the steps
-/// `steps_to(k every, dt)`, k = 1, 2, ..., each once.
+/// `steps_to(k every, dt)`, k = 1, 2, ..., each once; or, for a run whose step changes
+/// ([`Schedule::in_time`]), the first step at or past each `k every` (within 1e-9 of a step).
 pub(crate) struct Schedule {
     every: Option<f64>,
     next: u64,
+    /// For [`Schedule::in_time`]: the next output time, s.
+    next_time: Option<f64>,
 }
 
 impl Schedule {
     pub(crate) fn new(every: Option<f64>) -> Schedule {
-        Schedule { every, next: 0 }
+        Schedule {
+            every,
+            next: 0,
+            next_time: None,
+        }
     }
+
+    /// A schedule read on the steps' times, for steps of changing size.
+    pub(crate) fn in_time(every: Option<f64>) -> Schedule {
+        Schedule {
+            next_time: Some(0.0),
+            ..Schedule::new(every)
+        }
+    }
+
+    /// Whether step `n` at `t` (s; `dt` its step, s) is due; advances past it.
+    pub(crate) fn due_at(&mut self, n: u64, t: f64, dt: f64) -> bool {
+        match (self.every, self.next_time) {
+            (Some(every), Some(next)) => {
+                if t < next - 1e-9 * dt {
+                    return false;
+                }
+                let after = (((t + 1e-9 * dt) / every).floor() + 1.0) * every;
+                // An interval below the time's resolution: every step is due.
+                self.next_time = Some(if after.is_finite() && after > t {
+                    after
+                } else {
+                    t
+                });
+                true
+            }
+            _ => self.due(n, dt),
+        }
+    }
+
     /// Whether step `n` is due; advances past it.
     pub(crate) fn due(&mut self, n: u64, dt: f64) -> bool {
         let Some(every) = self.every else { return true };
@@ -162,6 +198,29 @@ mod tests {
                 reference(every, dt, 3000),
                 "every {every:e} s, dt {dt:e} s"
             );
+        }
+    }
+
+    #[test]
+    fn in_time_the_first_step_at_or_past_each_interval_is_due() {
+        // Steps of 0.3, 0.3, 0.7, 0.2, 1.1, ... s (times 0, 0.3, 0.6, 1.3, 1.5, 2.6, 2.9, 3.0)
+        // with rows every 1 s: t = 0, then the first at or past 1, 2 and 3 s.
+        let times = [0.0, 0.3, 0.6, 1.3, 1.5, 2.6, 2.9, 3.0];
+        let mut s = Schedule::in_time(Some(1.0));
+        let due: Vec<f64> = times
+            .iter()
+            .enumerate()
+            .filter(|&(n, &t)| s.due_at(n as u64, t, 0.1))
+            .map(|(_, &t)| t)
+            .collect();
+        assert_eq!(due, [0.0, 1.3, 2.6, 3.0]);
+        // Every step without an interval, and under one below the times' resolution.
+        for every in [None, Some(1e-300)] {
+            let mut s = Schedule::in_time(every);
+            assert!(times
+                .iter()
+                .enumerate()
+                .all(|(n, &t)| s.due_at(n as u64, t, 0.1)));
         }
     }
 

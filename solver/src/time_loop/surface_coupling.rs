@@ -166,8 +166,8 @@ impl SurfaceImpact {
     /// Step 5: the impactor from `t_n` to `t_{n+1}` under `F_n`; under the penalty, the nose's
     /// forces at `u_{n+1}`. Returns the force known at `t_{n+1}` (whole plate, N; the
     /// kinematic enforcement's is found at the next step 2).
-    pub fn advance(&mut self, dt: f64, u: &[f64]) -> f64 {
-        self.body.advance(dt, self.force());
+    pub fn advance(&mut self, (dt, h): (f64, f64), u: &[f64]) -> f64 {
+        self.body.advance((dt, h), self.force());
         if self.enforcement == Enforcement::Penalty {
             self.nose
                 .evaluate(u, self.body.displacement, &mut self.forces);
@@ -177,9 +177,9 @@ impl SurfaceImpact {
 
     /// Indentation `delta_S + u_y(top mid-span)`, impactor displacement (m) and velocity (m/s)
     /// at `t_n`, as the nodal coupling reports them.
-    pub fn motion(&self, dt: f64, top_uy: f64) -> [f64; 3] {
+    pub fn motion(&self, h: f64, top_uy: f64) -> [f64; 3] {
         let d = self.body.displacement;
-        [d + top_uy, d, self.body.velocity(dt, self.force())]
+        [d + top_uy, d, self.body.velocity(h, self.force())]
     }
 
     /// The nose's force on every node of the mesh (`n_nodes` of them) at `t_n`, N, for a field
