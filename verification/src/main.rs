@@ -486,8 +486,15 @@ fn print_summary(s: &impact_solver::Summary) {
     if let Some(e) = s.impulse_momentum_error {
         println!("impulse-momentum error  {:>14.6e} (relative)", e);
     }
+    let step = match (s.dt_min, s.dt_max) {
+        (Some(lo), Some(hi)) => format!(
+            "dt {:.4e} s at the start ({:.3} of stable), re-estimated every step: {lo:.4e} to {hi:.4e} s",
+            s.dt, s.cfl
+        ),
+        _ => format!("dt {:.4e} s ({:.3} of stable)", s.dt, s.cfl),
+    };
     println!(
-        "dt {:.4e} s ({:.3} of stable), {} steps, {} elements, {:.3} s wall ({:.1} ns per element-step)",
-        s.dt, s.cfl, s.n_steps, s.n_elements, s.wall_time, s.ns_per_element_step
+        "{step}, {} steps, {} elements, {:.3} s wall ({:.1} ns per element-step)",
+        s.n_steps, s.n_elements, s.wall_time, s.ns_per_element_step
     );
 }
