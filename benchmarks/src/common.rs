@@ -8,6 +8,7 @@ use impact_solver::{simulate_on, History, Outcome, Quiet, Scene};
 const ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml");
 const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
 const PULSE: &str = include_str!("../../verification/scenes/paper-pulse-elastic.yaml");
+const TAYLOR: &str = include_str!("../../verification/scenes/taylor-bar-kamoulakos.yaml");
 
 /// A scene of the paper's case on the reconstructed plate, without field output and with a
 /// history row every 1e-5 s (as `reference-data/independent/scenes/table1-*.yaml`).
@@ -25,6 +26,20 @@ pub fn paper(plastic: bool) -> Scene {
     } else {
         sparse(ELASTIC, "paper-elastic.yaml")
     }
+}
+
+/// The Taylor bar of Kamoulakos (verification/scenes/taylor-bar-kamoulakos.yaml: finite
+/// deformation, 10 x 36 q4-sri, 80 us, the step fixed at cfl 0.02), history every 1e-6 s;
+/// `every_step`: the step re-estimated at every step at cfl 0.8 instead.
+pub fn taylor_bar(every_step: bool) -> Scene {
+    let mut s = Scene::from_yaml(TAYLOR, Path::new("taylor-bar-kamoulakos.yaml"))
+        .expect("the Taylor bar scene is valid");
+    s.output.every = Some(1e-6);
+    if every_step {
+        s.time.dt = impact_solver::scene::DtChoice::Cfl(0.8);
+        s.time.dt_update = impact_solver::scene::DtUpdate::EveryStep;
+    }
+    s
 }
 
 /// The paper's verification load on the elastic reconstructed plate: 86.5 kN rectangular
