@@ -8,7 +8,19 @@
 //! The axisymmetric rows (the same 80 x 16 section as a round plate's, every point yielding,
 //! small and finite kinematics) have no target: they show what the ring costs (measured
 //! 2026-11-26, quick, two helpers compiling: q4-sri 32 ns small, 150 ns finite, whose F-bar
-//! takes a cube root per point lane by lane, against 61 ns for the plane finite kernel).
+//! takes a cube root per point lane by lane, against 61 ns for the plane finite kernel then).
+//!
+//! The plane finite kernel (2026-11-26, quick, min of 3 runs interleaved with the previous
+//! binary, other builds on the second core): 53.4 ns against 29.7 ns small-strain, 1.80x
+//! (60.2 ns, 2.03x, before each point's F-bar factor was computed one point ahead); elastic
+//! 35.6 ns (43.9). Missed, and not reachable with the same arithmetic: per batch of 8 it
+//! does ~1400 512-bit floating-point operations (~740 of them multiplies; the small-strain
+//! kernel ~825 and ~410), from the step's midpoint and end rotations and inverses, F-bar's
+//! factor and `P = tau F^-T` (~85 more multiplies per point, ~26 for the centroid), and the
+//! processor retires one 512-bit multiply per cycle: at its 2.6 GHz both kernels now keep
+//! the multiply pipe ~66 % busy, and 1.5x would take ~79 %. Both are bound by each point's chain of
+//! dependent operations (`perf annotate`: the samples pile up after the divisions and square
+//! roots), so the rest is fewer operations, which changes the finite results' bits.
 
 use std::path::Path;
 use std::time::Instant;

@@ -23,10 +23,11 @@
 //!   element rotated by `R`, so the stiffness form is already the co-rotational one.
 
 use crate::lanes::real::Real;
+use crate::lanes::simd::Lanes;
 use crate::physics::element::{
     small_strain_response, Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
-use crate::physics::geometry::Vector;
+use crate::physics::geometry::{PointGeometry, Vector};
 use crate::physics::kinematics::{self, deformation, det, inverse_with, piola, Gradient, Memory};
 use crate::physics::material::{ConstitutiveModel, Response};
 
@@ -81,6 +82,26 @@ pub(crate) fn point_update<M: ConstitutiveModel, R: Real>(
     (r, step.inverse)
 }
 
+/// F-bar's factor `alpha = (J_c / J)^(1/2)` of the point `geometry` (its `J` from `u`, the
+/// centroid's `j_c`) and the displacement gradient of `F_bar = alpha F`.
+#[inline(always)]
+fn f_bar<R: Real>(
+    geometry: &PointGeometry<Lanes>,
+    at: usize,
+    u: &Vector<R>,
+    j_c: R,
+) -> (R, Gradient<R>) {
+    let f_p = deformation(&geometry.gradient(at, u));
+    let alpha = (j_c / det(&f_p)).sqrt();
+    let g_bar = [
+        f_p[0] * alpha - 1.0,
+        f_p[1] * alpha,
+        f_p[2] * alpha,
+        f_p[3] * alpha - 1.0,
+    ];
+    (alpha, g_bar)
+}
+
 /// Adds a point's energy densities times its reference weight `w` (m^3) to `energy`.
 #[inline(always)]
 pub(crate) fn add_energy<M: ConstitutiveModel, R: Real>(
@@ -133,17 +154,21 @@ impl FiniteResponse for SelectiveQ4 {
         let mut f = [R::splat(0.0); 8];
         let mut energy = Energy::<R>::default();
         let mut mean_total = R::splat(0.0);
+        let points = self.full.points::<R>(at);
+        // Each point's F-bar factor one point ahead: its division and square root then run
+        // while the point before is updated, where in the point's own chain of factor, step,
+        // return and forces they were waited on (the q4-sri finite kernel with every point
+        // yielding, `impact-bench throughput --quick`: 60.2 -> 53.4 ns, min of 3 runs
+        // interleaved with the previous binary; the whole step one point ahead, 16 vectors
+        // carried instead of 5, was 7 % slower than the plain loop).
+        let mut next = f_bar(&points[0], at, u, j_c);
         for (p, batch) in batches.iter_mut().enumerate().take(4) {
-            let geometry = &self.full.points::<R>(at)[p];
+            let geometry = &points[p];
+            let (alpha, g_bar) = next;
+            if p + 1 < points.len() {
+                next = f_bar(&points[p + 1], at, u, j_c);
+            }
             let w = geometry.det_j::<R>(at) * self.full.width;
-            let f_p = deformation(&geometry.gradient(at, u));
-            let alpha = (j_c / det(&f_p)).sqrt();
-            let g_bar = [
-                f_p[0] * alpha - 1.0,
-                f_p[1] * alpha,
-                f_p[2] * alpha,
-                f_p[3] * alpha - 1.0,
-            ];
             let (r, inv_bar) = point_update(material, (&g_bar, None), batch, at, active);
             add_energy::<M, R>(&mut energy, w, &r);
             let tau = r.stress;
