@@ -140,3 +140,24 @@ def test_refusals(change):
     """every-step needs finite kinematics and a cfl; the update is once | every-step."""
     with pytest.raises(SceneError):
         scene(**{**BAR, **{k: v for k, v in change.items()}})
+
+
+def test_floor_is_a_clear_cli_error(tmp_path, monkeypatch, capsys):
+    """Through the CLI the floor is an error line naming the element (exit 2), not a traceback:
+    the deformed-step ratio forced to 1 at t_0 and 1e-4 after (a stand-in for a crushed
+    element)."""
+    import yaml
+    from indep_fe.__main__ import main
+    from indep_fe.finite import FiniteKinematics
+    calls = []
+
+    def ratio(self, u):
+        calls.append(1)
+        return (1.0 if len(calls) == 1 else 1e-4), 3
+
+    monkeypatch.setattr(FiniteKinematics, "step_factor", ratio)
+    path = tmp_path / "bar.yaml"
+    path.write_text(yaml.safe_dump(BAR))
+    assert main(["simulate", str(path), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("indep_fe: error: at step 1") and "element 3" in err
