@@ -8,6 +8,7 @@ import sys
 from .contact import ContactLawExceeded
 from .scene import SceneError, load_scene
 from .solver import UnstableRun, simulate, write_outputs
+from .step import StepTooSmall
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -27,7 +28,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         scene = load_scene(args.scene)
         res = simulate(scene, progress=args.progress)
-    except (SceneError, ContactLawExceeded, UnstableRun, ValueError) as exc:
+    except (SceneError, ContactLawExceeded, UnstableRun, StepTooSmall, ValueError) as exc:
         print(f"indep_fe: error: {exc}", file=sys.stderr)
         return 2
     write_outputs(res, args.out)

@@ -33,11 +33,12 @@ import numpy as np
 
 # scalar summary metrics compared relatively, and those compared exactly
 # (contact_step_factor .. max_nodes_in_contact: surface-coupling scenes only; max_temperature_K,
-# heat_J: rate laws with thermal only (ALGORITHM.md 3b); each compared when either run has it)
+# heat_J: rate laws with thermal only (ALGORITHM.md 3b); dt_min_s, dt_max_s: a step re-estimated
+# at every step only (6b); each compared when either run has it)
 SUMMARY_METRICS = ["impulse_Ns", "peak_contact_force_N", "max_plate_displacement_m",
                    "final_impactor_velocity_mps", "contact_duration_s", "contact_step_factor",
                    "max_contact_half_width_m", "max_nodes_in_contact", "max_temperature_K",
-                   "heat_J"]
+                   "heat_J", "dt_min_s", "dt_max_s"]
 # summary objects compared key by key: per probe (max_plastic_strain_rate_1_s: with a rate law
 # only) and the rigid wall's (section 5c: wall scenes only)
 SUMMARY_PER_PROBE = ["max_von_mises_Pa", "max_plastic_strain_rate_1_s", "wall"]
@@ -146,6 +147,10 @@ def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, f
     ga, gb = sa.get("geometry", "plane-strain"), sb.get("geometry", "plane-strain")
     if ga != gb:
         problems.append(f"geometry differs: {ga} vs {gb}")
+    # section 6b: and the step's update of every-step runs only (absent: once)
+    ua, ub = sa.get("dt_update", "once"), sb.get("dt_update", "once")
+    if ua != ub:
+        problems.append(f"dt_update differs: {ua} vs {ub}")
     for k in SUMMARY_EXACT:
         if k in sa and k in sb:
             r = rel(sa[k], sb[k])

@@ -119,6 +119,10 @@ class TimeSpec:
     cfl: float | None = None
     fixed_dt: float | None = None
     allow_unstable_dt: bool = False
+    update: str = "once"                  # time.dt.update: once | every-step (section 6b)
+
+
+DT_UPDATES = ("once", "every-step")
 
 
 @dataclass
@@ -442,7 +446,15 @@ def _parse_time(data: dict) -> TimeSpec:
         ts.after_contact = _pos(val, "time.end.after_contact", allow_zero=True)
     else:
         ts.end = _pos(end, "time.end")
-    kind, val = _one_of(_req(t, "dt", "time"), "time.dt")
+    dt = _req(t, "dt", "time")
+    if isinstance(dt, dict) and "update" in dt:
+        # section 6b: the step re-estimated at every step (finite kinematics and cfl only,
+        # checked in parse_scene once the kinematics is known)
+        dt = dict(dt)
+        ts.update = str(dt.pop("update"))
+        if ts.update not in DT_UPDATES:
+            raise SceneError(f"time.dt.update must be once | every-step, got {ts.update!r}")
+    kind, val = _one_of(dt, "time.dt")
     if kind == "cfl":
         ts.cfl = _pos(val, "time.dt.cfl")
     elif kind == "fixed":
@@ -489,6 +501,9 @@ def parse_scene(data: dict) -> Scene:
         raise SceneError(f"geometry must be plane-strain | axisymmetric, got {geometry!r}")
     if geometry == "axisymmetric":
         _check_axisymmetric(mesh, impactor)
+    if ts.update == "every-step" and (kinematics != "finite" or ts.cfl is None):
+        raise SceneError("time.dt.update: every-step needs kinematics: finite and time.dt.cfl "
+                         f"(got kinematics {kinematics!r}, time.dt {'cfl' if ts.cfl else 'fixed'})")
     return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry, wall)
 
 

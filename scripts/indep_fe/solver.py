@@ -21,6 +21,7 @@ from .finite_ring import FiniteRing
 from .material import MaterialModel, lame, von_mises
 from .mesh import build_mesh, find_element
 from .scene import Scene
+from .step import StepPlan, cut, reached, summary_keys, velocity_step
 from .surface import SurfaceNose
 from .wall import RigidWall
 
@@ -48,12 +49,14 @@ class UnstableRun(RuntimeError):
 
 
 def history_columns(probe_names: list[str], impact: bool = True, surface: bool = False,
-                    rate: bool = False, thermal: bool = False, wall: bool = False) -> list[str]:
+                    rate: bool = False, thermal: bool = False, wall: bool = False,
+                    every_step: bool = False) -> list[str]:
     """ALGORITHM.md section 8. Pulse scenes omit the three impactor columns; the surface
     coupling adds its two after them; a rate law adds each probe's plastic strain rate after
     its von Mises stress, and `thermal` its temperature after that (section 3b); the wall its
-    two after the surface coupling's place (section 5c)."""
-    cols = ["time_s", "contact_force_N"] + (IMPACT_COLUMNS if impact else [])
+    two after the surface coupling's place (section 5c); a step re-estimated at every step its
+    `dt_s` (the step from t_n, s) right after `time_s` (section 6b)."""
+    cols = ["time_s"] + (["dt_s"] if every_step else []) + ["contact_force_N"] + (IMPACT_COLUMNS if impact else [])
     cols += SURFACE_COLUMNS if surface else []
     cols += WALL_COLUMNS if wall else []
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
@@ -228,6 +231,7 @@ class _Contact:
     intervals: list = field(default_factory=list)
     prev_load: float = 0.0
     t_sep: float | None = None   # first t_n with F_n = 0 after the last contact interval
+    timed: tuple | None = None   # section 6b: (end or None, limit) in s, reached by t_n
 
     def step(self, n: int, t: float, dt: float, load: float) -> tuple[bool, str]:
         """Records F_n at t_n; returns whether the run stops after this step, and why."""
@@ -240,10 +244,16 @@ class _Contact:
         elif self.prev_load > 0.0:
             self.t_sep = t
         self.prev_load = load
-        if self.n_end is not None:
+        if self.timed is not None:
+            end, limit = self.timed
+            if end is not None:
+                return reached(t, end, dt), "end_time"
+            if reached(t, limit, dt):
+                return True, "time_limit"
+        elif self.n_end is not None:
             return n >= self.n_end, "end_time"
         # end: {after_contact: T}: first t_n with t_n - t_sep >= T; time.limit hard stop
-        if n >= self.n_limit:
+        elif n >= self.n_limit:
             return True, "time_limit"
         if self.t_sep is not None and t - self.t_sep >= self.after - 1e-9 * dt:
             return True, "after_contact"
@@ -320,13 +330,14 @@ def _check_mesh(pl: _Plate, u: np.ndarray, n: int, t: float, dt: float,
 def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
              body: _Impactor | SurfaceNose | None,
              contact: _Contact, balance: _Balance, totals: dict, n: int, dt: float,
-             dt_crit: float, stop_reason: str) -> dict:
-    """summary.json (section 8)."""
+             dt_crit: float, stop_reason: str, t_end: float, h_last: float) -> dict:
+    """summary.json (section 8); dt the first step, t_end the final time, h_last the last
+    velocity step (s)."""
     intervals = contact.intervals
     impulse = totals["impulse"]
     surface = isinstance(body, SurfaceNose)
     law = body if surface else (body.law if body is not None else None)
-    v_final = (body.velocity(dt) if surface else body.vS) if body is not None else None
+    v_final = (body.velocity(h_last) if surface else body.vS) if body is not None else None
     out = {
         "solver": "indep_fe (Python reference, scripts/indep_fe)",
         "impulse_Ns": impulse,
@@ -343,8 +354,8 @@ def _summary(scene: Scene, pl: _Plate, material: MaterialModel,
         "dt_s": dt,
         "dt_critical_s": dt_crit,
         "n_steps": n,
-        "end_time_s": n * dt,
-        "final_time_s": n * dt,
+        "end_time_s": t_end,
+        "final_time_s": t_end,
         "stop_reason": stop_reason,
         "cfl": dt / dt_crit,
         "n_elements": pl.pm.n_elements,
@@ -381,8 +392,13 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     pulse = scene.pulse
     F_pulse = (lambda t: pulse.force if 0.0 <= t < pulse.duration else 0.0) if pulse else None
     ts = scene.time
+    plan = (StepPlan(ts.cfl, pl.dt_plate, pl.finite, pl.nose if pl.nose is not None
+                     and not pl.nose.kinematic else None)
+            if ts.update == "every-step" else None)   # section 6b
     contact = _Contact(n_end=steps_for(ts.end, dt) if ts.end is not None else None,
-                       n_limit=steps_for(ts.limit, dt), after=ts.after_contact)
+                       n_limit=steps_for(ts.limit, dt), after=ts.after_contact,
+                       timed=(ts.end, ts.limit) if plan is not None else None)
+    target = ts.end if ts.end is not None else ts.limit   # the end a re-estimated step lands on
     imp = scene.impactor
     # section 7: energy-consistent scenes (force node = datum node, a pulse; section 5b: the
     # surface coupling)
@@ -393,7 +409,8 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     rate = material.rate
     thermal = rate is not None and rate.thermal is not None
     columns = history_columns(probe_names, impact=body is not None, surface=surface,
-                              rate=rate is not None, thermal=thermal, wall=scene.wall is not None)
+                              rate=rate is not None, thermal=thermal, wall=scene.wall is not None,
+                              every_step=plan is not None)
     rows: list[list] = []
     s, ndof, pm = pl.s, 2 * pl.pm.n_nodes, pl.pm
     u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2} (v_0 at n = 0)
@@ -414,24 +431,47 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     fy = 2 * force_node + 1
 
     kinematic = surface and body.kinematic
-    n = 0
+    n, t, dt_prev = 0, 0.0, None     # dt_prev: dt_{n-1/2} (section 6b), None at n = 0
     while True:
-        t = n * dt
+        if plan is None:
+            t = n * dt
+            dt_est = dt
+        else:
+            # section 6b: dt_{n+1/2} on u_n; the rates over the step the increment was made on
+            dt_est = plan.estimate(u, n)
+            if rate is not None:
+                rate.dt = dt_est if dt_prev is None else dt_prev
         # 1. internal forces at u_n
         stress, strain_energy, dwork, f_int, hg_energy = _internal_forces(pl, material, u)
         totals["plastic_work"] += dwork
         plastic_work = totals["plastic_work"]
+        # the step from t_n (section 6b: cut to land on the end, uncut at the last step) and the
+        # velocity step h_n
+        if plan is None:
+            dt_step, h = dt, (0.5 * dt if n == 0 else dt)
+            dt_back = dt
+        else:
+            at_end = reached(t, target, dt_est)
+            dt_step = dt_est if at_end else cut(t, target, dt_est)
+            h, dt_back = velocity_step(dt_prev, dt_step), dt_prev
         if kinematic:
             # section 5b: the kinematic enforcement solves f_n, F_n here, from f_int(u_n); the
             # impulse's trapezoid (F_n-1 + F_n) dt / 2 is counted once F_n is known
-            totals["impulse"] += body.solve(u, v_half, f_int, dt, first=n == 0)
+            totals["impulse"] += body.solve(u, v_half, f_int, dt_step, first=n == 0, h=h,
+                                            dt_prev=dt_back)
         if wall is not None:
-            load = wall.solve(u, v_half, f_int, dt, first=n == 0)
-            totals["impulse"] += 0.5 * (F_last + load) * dt if n > 0 else 0.0
+            load = wall.solve(u, v_half, f_int, dt_step, first=n == 0, h=h)
+            totals["impulse"] += 0.5 * (F_last + load) * dt_back if n > 0 else 0.0
             F_last = load
         else:
             load = body.F if body is not None else F_pulse(t)
-        last, stop_reason = contact.step(n, t, dt, load)
+        last, stop_reason = contact.step(n, t, dt_est, load)
+        if plan is not None and dt_step == dt_est:
+            # section 6b: every estimate used uncut, the last step's (its velocity step) too;
+            # the step cut to land on the end not counted (reading checked against the Rust:
+            # leaving the last step's estimate out gives dt_min_s 2.6e-3 off on
+            # axisym-wall-taylor-every-step, where the step falls to the end)
+            plan.taken.append(dt_est)
 
         # 2. external force; 3. central difference
         f_ext = np.zeros(ndof)
@@ -442,14 +482,14 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         else:
             f_ext[fy] = -load / s
         a = (f_ext - f_int) * pl.inv_m
-        v_new = v_half + dt * a if n > 0 else v_half + 0.5 * dt * a
-        u_new = u + dt * v_new
+        v_new = v_half + h * a
+        u_new = u + dt_step * v_new
 
         # 4. energies at t_n
         v_n = 0.5 * (v_half + v_new) if n > 0 else v_half
         e_kin = s * 0.5 * float(np.dot(pl.m_dof, v_n * v_n))
         if surface:
-            v_S = body.velocity(dt)
+            v_S = body.velocity(h)
             e_imp = 0.5 * body.m_s * v_S * v_S
             e_con = body.energy
             totals["max_half_width"] = max(totals["max_half_width"], body.half_width)
@@ -461,9 +501,10 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             e_con = wall.energy
             wall_row = wall.reading(u)
         total = e_kin + e_imp + s * strain_energy + s * plastic_work + s * hg_energy + e_con
-        imbalance = balance.record(n, t, total, W_ext, dt, dt_crit)
+        imbalance = balance.record(n, t, total, W_ext, dt_step, dt_crit)
         if n % CHECK_EVERY == 0 or last:
-            _check_mesh(pl, u, n, t, dt, scene.time.allow_unstable_dt)
+            # section 6b: the re-estimated step needs no deformed-step check (it is that estimate)
+            _check_mesh(pl, u, n, t, dt, scene.time.allow_unstable_dt or plan is not None)
 
         totals["peak_F"] = max(totals["peak_F"], load)
         totals["max_down"] = min(totals["max_down"], u[mid_uy])
@@ -474,8 +515,10 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             for name, p in zip(probe_names, probe_pts):
                 totals["max_rate"][name] = max(totals["max_rate"][name], float(rate.kdot[p]))
 
-        if n == 0 or n >= next_row or last:
-            row = [t, load]
+        due = (n >= next_row if plan is None
+               else every is None or reached(t, k_row * every, dt_est))
+        if n == 0 or due or last:
+            row = [t] + ([dt_step] if plan is not None else []) + [load]
             if surface:
                 row += [body.dS + u[top_uy], body.dS, v_S, body.half_width, body.n_contact]
             elif body is not None:
@@ -495,31 +538,38 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
             row += [e_kin, e_imp, s * strain_energy, s * plastic_work, s * hg_energy, e_con,
                     W_ext, imbalance]
             rows.append(row)
-            while next_row <= n:
+            while plan is None and next_row <= n:
                 k_row += 1
                 next_row = steps_for(k_row * every, dt) if every is not None else n + 1
+            while plan is not None and every is not None and reached(t, k_row * every, dt_est):
+                k_row += 1
         if progress and n % 2000 == 0:
             print(f"  step {n} t = {t:.4e} s F = {load:.4e} N", file=sys.stderr)
         if last:
             break
 
         # external work of the pulse over [t_n, t_n+1]
+        t_next = (n + 1) * dt if plan is None else t + dt_step
         if pulse is not None:
-            W_ext += 0.5 * (F_pulse(t) + F_pulse((n + 1) * dt)) * (-u_new[top_uy] + u[top_uy])
-            totals["impulse"] += 0.5 * (F_pulse(t) + F_pulse((n + 1) * dt)) * dt
+            W_ext += 0.5 * (F_pulse(t) + F_pulse(t_next)) * (-u_new[top_uy] + u[top_uy])
+            totals["impulse"] += 0.5 * (F_pulse(t) + F_pulse(t_next)) * dt_step
         # 5. contact (surface: section 5b; nodal: eq. 21, then eqs. 19-20)
-        if body is not None:
-            totals["impulse"] += body.step(u_new, dt)
+        if surface:
+            totals["impulse"] += body.step(u_new, dt_step, h if plan is not None else None)
+        elif body is not None:
+            totals["impulse"] += body.step(u_new, dt_step)
         u, v_half = u_new, v_new
-        n += 1
+        n, t, dt_prev = n + 1, t_next, dt_step
 
     # contact still open at the end of the run: closed at the final time
     if contact.intervals and contact.intervals[-1][1] is None:
-        contact.intervals[-1][1] = n * dt
+        contact.intervals[-1][1] = t
     for row in rows:
         row[-1] = balance.ratio(row[-1])
     summary = _summary(scene, pl, material, body, contact, balance, totals, n, dt, dt_crit,
-                       stop_reason)
+                       stop_reason, t, h)
+    if plan is not None:
+        summary.update(summary_keys(plan))
     if wall is not None:
         ivs = contact.intervals
         release = ivs[-1][1] if ivs and load == 0.0 else None

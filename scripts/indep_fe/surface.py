@@ -137,10 +137,11 @@ class SurfaceNose:
 
     # ------------------------------------------------------------------ kinematic
     def kinematic_forces(self, uc: np.ndarray, vc: np.ndarray, fc: np.ndarray, dt: float,
-                         first: bool):
+                         first: bool, h: float | None = None):
         """The kinematic solve of section 5b from the candidates' u_n, v_{n-1/2} and f_int(u_n)
-        (each (n_c, 2)): returns (lambda (n_c,), n (n_c, 2), d_x at the prediction)."""
-        hs = 0.5 * dt if first else dt                      # the velocity step of step 3
+        (each (n_c, 2)): returns (lambda (n_c,), n (n_c, 2), d_x at the prediction). dt is
+        dt_{n+1/2}, h the velocity step (default dt/2 at n = 0, else dt; section 6b: given)."""
+        hs = (0.5 * dt if first else dt) if h is None else h   # the velocity step of step 3
         up = uc + dt * (vc - hs * fc * self.im)             # contact-free u_{n+1}
         dp = self.dS + dt * (self.v0 if first else self.v_half)
         dx, dy, dist, g = self.gap(up, dp)
@@ -173,13 +174,13 @@ class SurfaceNose:
         return lam, np.stack([nx_, ny_], axis=1), dx
 
     def solve(self, u: np.ndarray, v_half: np.ndarray, f_int: np.ndarray, dt: float,
-              first: bool) -> float:
+              first: bool, h: float | None = None, dt_prev: float | None = None) -> float:
         """Section 6 step 2 of t_n (kinematic): the nose's forces f_n, F_n from f_int(u_n), then
         the contact work W_n (energy -W_n). Returns the impulse increment (F_n-1 + F_n) dt / 2
-        (0 at n = 0)."""
+        (0 at n = 0; section 6b: on the previous step's length dt_prev)."""
         uc = self.candidate_u(u)
         lam, nrm, dx = self.kinematic_forces(uc, self.candidate_u(v_half),
-                                             self.candidate_u(f_int), dt, first)
+                                             self.candidate_u(f_int), dt, first, h)
         self.f = lam[:, None] * nrm
         self.F = self.s * float(np.sum(lam * (-nrm[:, 1])))
         on = lam > 0.0
@@ -190,14 +191,15 @@ class SurfaceNose:
             u0, f0, F0, d0 = self.prev
             self.work += (self.s * float(np.sum(0.5 * (f0 + self.f) * (uc - u0)))
                           - 0.5 * (F0 + self.F) * (self.dS - d0))
-            di = 0.5 * (F0 + self.F) * dt
+            di = 0.5 * (F0 + self.F) * (dt if dt_prev is None else dt_prev)
         self.energy = -self.work
         self.prev = (uc, self.f.copy(), self.F, self.dS)
         return di
 
     # ------------------------------------------------------------------ both
     def velocity(self, dt: float) -> float:
-        """v_S,n = v_S,n-1/2 - dt F_n / (2m) (v0 at n = 0)."""
+        """v_S,n = v_S,n-1/2 - dt F_n / (2m) (v0 at n = 0); dt the velocity step (section 6b:
+        h_n, so v_S,n is the mean of v_S,n-1/2 and v_S,n+1/2)."""
         if self.v_half is None:
             return self.v0
         return self.v_half - dt * self.F / (2.0 * self.m_s)
@@ -207,15 +209,16 @@ class SurfaceNose:
         f_ext[2 * self.nodes] += self.f[:, 0]
         f_ext[2 * self.nodes + 1] += self.f[:, 1]
 
-    def step(self, u_new: np.ndarray, dt: float) -> float:
+    def step(self, u_new: np.ndarray, dt: float, h: float | None = None) -> float:
         """Section 6 step 5: the impactor to n+1; penalty: then the forces at u_{n+1},
         delta_S,n+1. Returns the impulse increment (F_n + F_{n+1}) dt / 2 (penalty; the kinematic
-        one is counted by `solve` at n+1)."""
+        one is counted by `solve` at n+1). dt is dt_{n+1/2}; h the velocity step (default dt/2
+        at n = 0, else dt; section 6b: the mean of the two steps)."""
         F = self.F
         if self.v_half is None:
-            self.v_half = self.v0 - dt * F / (2.0 * self.m_s)
+            self.v_half = self.v0 - (0.5 * dt if h is None else h) * F / self.m_s
         else:
-            self.v_half = self.v_half - dt * F / self.m_s
+            self.v_half = self.v_half - (dt if h is None else h) * F / self.m_s
         self.dS = self.dS + dt * self.v_half
         if self.kinematic:
             return 0.0

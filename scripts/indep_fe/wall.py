@@ -31,9 +31,11 @@ class RigidWall:
         return v
 
     def solve(self, u: np.ndarray, v_half: np.ndarray, f_int: np.ndarray, dt: float,
-              first: bool) -> float:
-        """Step 2 of t_n: R_i from the contact-free prediction; returns F_n (N)."""
-        h = 0.5 * dt if first else dt
+              first: bool, h: float | None = None) -> float:
+        """Step 2 of t_n: R_i from the contact-free prediction; returns F_n (N). dt is
+        dt_{n+1/2} (s), h the velocity step (s): dt/2 at n = 0, else dt, unless given
+        (section 6b: the mean of the two steps)."""
+        h = (0.5 * dt if first else dt) if h is None else h
         self.done += self.W
         self.share = 0.0 if first else 0.5
         y = self.Y + u[1::2]

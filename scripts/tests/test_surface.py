@@ -331,8 +331,8 @@ def test_kinematic_contact_energy_is_minus_the_work():
     seen = []
     orig = SurfaceNose.solve
 
-    def spy(self, u, v_half, f_int, dt, first):
-        di = orig(self, u, v_half, f_int, dt, first)
+    def spy(self, u, v_half, f_int, dt, first, **step):
+        di = orig(self, u, v_half, f_int, dt, first, **step)
         seen.append((self.candidate_u(u), self.f.copy(), self.F, self.dS, self.energy, self.s))
         return di
 
