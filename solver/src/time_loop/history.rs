@@ -233,10 +233,7 @@ impl<'s> Recorder<'s> {
             wall: None,
         };
         Ok(Recorder {
-            rows: match scene.time.dt_update {
-                DtUpdate::Once => Schedule::new(scene.output.every),
-                DtUpdate::EveryStep => Schedule::in_time(scene.output.every),
-            },
+            rows: Schedule::of(scene.output.every, scene.time.dt_update),
             row: Vec::with_capacity(columns.len()),
             probes,
             sink,

@@ -410,13 +410,10 @@ impl<'o> Watch<'o> {
     fn new(scene: &Scene, observer: &'o mut dyn Observer, clock: &Clock) -> Watch<'o> {
         let wants = observer.wants_fields();
         Watch {
-            frames: {
-                let every = wants.then_some(scene.output.fields_every).flatten();
-                match scene.time.dt_update {
-                    DtUpdate::Once => Schedule::new(every),
-                    DtUpdate::EveryStep => Schedule::in_time(every),
-                }
-            },
+            frames: Schedule::of(
+                wants.then_some(scene.output.fields_every).flatten(),
+                scene.time.dt_update,
+            ),
             wants_fields: wants && scene.output.fields_every.is_some(),
             progress_every: (clock.last_step / 200).max(1),
             end_time: clock.end_time,

@@ -1,6 +1,7 @@
 //! When the recorder writes: the output steps of `output.every` (history rows) and
 //! `output.fields.every` (field frames), `steps_to(k every, dt)` for k = 1, 2, ...
 
+use crate::input::scene::DtUpdate;
 pub(crate) use crate::input::time_step::steps_to;
 
 /// A schedule of output steps every `every` s (every step when `None`): step 0 and the steps
@@ -19,6 +20,16 @@ impl Schedule {
             every,
             next: 0,
             next_time: None,
+        }
+    }
+
+    /// The schedule of `every` for a run whose step is `update`d: on the step count when the
+    /// step is fixed ([`Schedule::new`]), on the steps' times when it changes
+    /// ([`Schedule::in_time`]).
+    pub(crate) fn of(every: Option<f64>, update: DtUpdate) -> Schedule {
+        match update {
+            DtUpdate::Once => Schedule::new(every),
+            DtUpdate::EveryStep => Schedule::in_time(every),
         }
     }
 
