@@ -16,10 +16,10 @@
 //! alone block took whole: a try under load costs at most that, and a load that starts
 //! mid-run is seen within a block (a probe follows at once).
 //!
-//! The parts of a job are the same whoever runs them: alone, the calling thread runs the
-//! team's parts one after another ([`crate::kernels::assembly`]), so a switch changes only who
-//! computes a part, never the arithmetic, and the results stay bit-identical whatever the
-//! timings decide (only the speed depends on them).
+//! Alone, the calling thread assembles the whole mesh as one thread does
+//! ([`crate::kernels::assembly`]: the team's parts add the same terms in the same order), so a
+//! switch changes who computes, never the arithmetic, and the results stay bit-identical
+//! whatever the timings decide (only the speed depends on them).
 
 use std::cell::Cell;
 use std::time::Instant;
