@@ -2,9 +2,12 @@
 //! (issue 28: threads that never make a run slower).
 //!
 //! On a busy machine (the other core taken) a team's worker is often off its core when the
-//! leader hands it a part, and the leader then waits a scheduler slice for it: measured on
-//! the paper's plastic scene, 1.27-1.41 s on two threads against 0.48-0.83 s on one. So the
-//! team measures itself against one thread: the steps go in blocks of [`BLOCK`] element-loop
+//! leader hands it a part. The leader then runs the part itself ([`crate::kernels::workers`]:
+//! parts are claimed by whoever comes first), which bounds that case near the one-thread
+//! time; before parts were claimed it waited a scheduler slice for the worker (measured on
+//! the paper's plastic scene, 1.27-1.41 s on two threads against 0.48-0.83 s on one). What
+//! claiming leaves is a worker preempted in the middle of its part, and the spinning worker
+//! taking time from the loaded machine. So the team also measures itself against one thread: the steps go in blocks of [`BLOCK`] element-loop
 //! passes (one per time step), each timed from the start of its first pass to the start of
 //! the next block's (the whole steps, the leader's serial work included). The run's first
 //! block runs alone (the reference); after two team blocks, and then now and then, one block

@@ -1,12 +1,16 @@
 //! A team of persistent threads for the time loop's element work: the threads are started once
 //! per model and wait between steps by spinning briefly and then parking, so a step hands its
-//! work over with two atomic operations instead of a fork/join through a task queue (rayon's
+//! work over with a few atomic operations instead of a fork/join through a task queue (rayon's
 //! injection and wake-up cost 10-50 us, more than a whole step of the default 80 x 16 mesh).
 //!
-//! [`Team::run`] calls `job(part)` for every `part` in `0..size`, part 0 on the calling thread,
-//! and returns when all parts are done. What a part computes is the caller's: it must depend
-//! only on `part` (never on which thread runs it or when), which is what keeps results
-//! bit-identical for every team size (see [`crate::kernels::assembly`]).
+//! [`Team::run`] calls `job(part)` for every `part` in `0..size` and returns when all parts are
+//! done. The parts are claimed in order by whoever comes first, the calling thread included
+//! (part 0 is its own): a worker that is off its core when a job starts (on a busy machine,
+//! for a scheduler slice of milliseconds) leaves its part to the caller, who then runs it
+//! itself instead of waiting, so such a step costs about what one thread would take. What a
+//! part computes is the caller's: it must depend only on `part` (never on which thread runs
+//! it or when), which is what keeps results bit-identical for every team size and whoever
+//! runs which part (see [`crate::kernels::assembly`]).
 
 use std::cell::UnsafeCell;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
@@ -27,10 +31,16 @@ const SPINS_BEFORE_PARKING: u32 = 1 << 15;
 /// How long a parked worker sleeps before it looks again (a missed wake-up costs this).
 const PARK_TIMEOUT: Duration = Duration::from_millis(1);
 
+/// The job number in the high 32 bits of [`Shared::state`], the next unclaimed part in the
+/// low 32 (team sizes are far below 2^32: [`crate::kernels::thread_count::max_threads`]).
+const EPOCH_SHIFT: u32 = 32;
+const PART_MASK: u64 = (1 << EPOCH_SHIFT) - 1;
+
 struct Shared {
-    /// Job number, incremented by the leader to start a job.
-    epoch: AtomicU64,
-    /// Workers that finished the current job.
+    /// The current job's number and its next unclaimed part (see [`EPOCH_SHIFT`]), written
+    /// by the leader to start a job and advanced by every claim ([`claim`]).
+    state: AtomicU64,
+    /// Parts of the current job finished.
     finished: AtomicUsize,
     /// The current job: a borrowed closure, valid while the leader waits in [`Team::run`].
     job: UnsafeCell<Option<*const Job>>,
@@ -40,12 +50,29 @@ struct Shared {
     panicked: AtomicBool,
 }
 
-// SAFETY: `job` is written only by the leader while no worker reads it (between a job's end,
-// which the leader observes through `finished`, and the next `epoch` increment, which
-// publishes it with Release ordering); workers read it after observing the new epoch with
-// Acquire ordering. The closure it points to is `Sync`.
+// SAFETY: `job` is written only by the leader while no part of a job is claimed and
+// unfinished (between a job's end, which the leader observes through `finished`, and the next
+// job's start, which publishes it with Release ordering through `state`); a worker reads it
+// only after a successful claim of a part of that job (Acquire), while the leader still waits
+// for the part. The closure it points to is `Sync`.
 unsafe impl Sync for Shared {}
 unsafe impl Send for Shared {}
+
+/// Claims the next part of job `epoch` of `size` parts: `None` once every part is claimed or
+/// the job is over (a newer one started).
+fn claim(state: &AtomicU64, epoch: u64, size: usize) -> Option<usize> {
+    let mut now = state.load(Ordering::Acquire);
+    loop {
+        let part = (now & PART_MASK) as usize;
+        if now >> EPOCH_SHIFT != epoch || part >= size {
+            return None;
+        }
+        match state.compare_exchange_weak(now, now + 1, Ordering::AcqRel, Ordering::Acquire) {
+            Ok(_) => return Some(part),
+            Err(seen) => now = seen,
+        }
+    }
+}
 
 /// Persistent threads that run jobs of `size` parts (see the module documentation).
 pub struct Team {
@@ -57,7 +84,7 @@ impl Team {
     /// A team of `size` (>= 1) parts: the caller plus `size - 1` started threads.
     pub fn new(size: usize) -> Team {
         let shared = Arc::new(Shared {
-            epoch: AtomicU64::new(0),
+            state: AtomicU64::new(0),
             finished: AtomicUsize::new(0),
             job: UnsafeCell::new(None),
             quit: AtomicBool::new(false),
@@ -68,7 +95,7 @@ impl Team {
                 let shared = Arc::clone(&shared);
                 thread::Builder::new()
                     .name(format!("impact-worker-{part}"))
-                    .spawn(move || work(&shared, part))
+                    .spawn(move || work(&shared, size))
                     .expect("the operating system starts a worker thread")
             })
             .collect();
@@ -80,26 +107,41 @@ impl Team {
         self.workers.len() + 1
     }
 
-    /// Runs `job(part)` for `part` in `0..self.size()` (part 0 here) and returns when every
-    /// part has finished. A panic in any part is raised here after all parts are done.
+    /// Runs `job(part)` for `part` in `0..self.size()` (part 0 here, the others by whoever
+    /// claims them first) and returns when every part has finished. A panic in any part is
+    /// raised here after all parts are done.
     pub fn run<'a>(&self, job: &'a (dyn Fn(usize) + Sync + 'a)) {
-        if self.workers.is_empty() {
+        let size = self.size();
+        if size == 1 {
             return job(0);
         }
         // SAFETY: the pointer outlives its use: this function does not return before every
-        // worker has finished the job (the wait below), and no worker reads it afterwards
-        // without a new epoch.
+        // part has finished (the wait below), and no worker reads it afterwards without
+        // claiming a part of a newer job.
         let erased: *const Job =
             unsafe { std::mem::transmute::<&'a (dyn Fn(usize) + Sync + 'a), &'static Job>(job) };
         unsafe { *self.shared.job.get() = Some(erased) };
         self.shared.finished.store(0, Ordering::Relaxed);
-        self.shared.epoch.fetch_add(1, Ordering::Release);
+        // The job number wraps after 2^32 jobs (the workers look for a change, not a rise).
+        let epoch = ((self.shared.state.load(Ordering::Relaxed) >> EPOCH_SHIFT) + 1) & PART_MASK;
+        // Part 0 claimed by the caller as the job starts.
+        self.shared
+            .state
+            .store((epoch << EPOCH_SHIFT) | 1, Ordering::Release);
         for w in &self.workers {
             w.thread().unpark();
         }
-        let mine = catch_unwind(AssertUnwindSafe(|| job(0)));
+        let mut mine = catch_unwind(AssertUnwindSafe(|| job(0)));
+        self.shared.finished.fetch_add(1, Ordering::Release);
+        while let Some(part) = claim(&self.shared.state, epoch, size) {
+            let r = catch_unwind(AssertUnwindSafe(|| job(part)));
+            self.shared.finished.fetch_add(1, Ordering::Release);
+            if mine.is_ok() {
+                mine = r;
+            }
+        }
         let mut spins = 0u32;
-        while self.shared.finished.load(Ordering::Acquire) < self.workers.len() {
+        while self.shared.finished.load(Ordering::Acquire) < size {
             spins = spins.wrapping_add(1);
             if spins % 256 == 0 {
                 thread::yield_now();
@@ -126,19 +168,19 @@ impl Drop for Team {
     }
 }
 
-/// A worker's life: wait for a new epoch, run its part, report, until the team is dropped.
-fn work(shared: &Shared, part: usize) {
+/// A worker's life in a team of `size`: wait for a new job, claim and run its parts while
+/// any is left, until the team is dropped.
+fn work(shared: &Shared, size: usize) {
     let mut seen = 0u64;
     loop {
         let mut spins = 0u32;
-        loop {
+        let epoch = loop {
             if shared.quit.load(Ordering::Acquire) {
                 return;
             }
-            let epoch = shared.epoch.load(Ordering::Acquire);
+            let epoch = shared.state.load(Ordering::Acquire) >> EPOCH_SHIFT;
             if epoch != seen {
-                seen = epoch;
-                break;
+                break epoch;
             }
             if spins < SPINS_BEFORE_PARKING {
                 spins += 1;
@@ -152,14 +194,18 @@ fn work(shared: &Shared, part: usize) {
             } else {
                 thread::park_timeout(PARK_TIMEOUT);
             }
+        };
+        seen = epoch;
+        while let Some(part) = claim(&shared.state, epoch, size) {
+            // SAFETY: see `Shared`; the part of this job was claimed with Acquire after the
+            // leader published the job, and the leader waits for it.
+            let job = unsafe { (*shared.job.get()).expect("a job is published with its epoch") };
+            let job: &Job = unsafe { &*job };
+            if catch_unwind(AssertUnwindSafe(|| job(part))).is_err() {
+                shared.panicked.store(true, Ordering::Relaxed);
+            }
+            shared.finished.fetch_add(1, Ordering::Release);
         }
-        // SAFETY: see `Shared`; the epoch was observed with Acquire after the leader's write.
-        let job = unsafe { (*shared.job.get()).expect("a job is published with its epoch") };
-        let job: &Job = unsafe { &*job };
-        if catch_unwind(AssertUnwindSafe(|| job(part))).is_err() {
-            shared.panicked.store(true, Ordering::Relaxed);
-        }
-        shared.finished.fetch_add(1, Ordering::Release);
     }
 }
 
@@ -205,8 +251,11 @@ pub fn part_range(n: usize, parts: usize, p: usize) -> std::ops::Range<usize> {
 
 #[cfg(test)]
 mod tests {
-    //! The team against a plain loop over the parts: every part runs exactly once per job,
-    //! jobs do not overlap, borrowed data is seen, panics reach the caller.
+    //! The team against a plain loop over the parts: every part runs exactly once per job
+    //! (whoever claims it), jobs do not overlap, borrowed data is seen, panics reach the
+    //! caller; the claims against hand-made job states. Wrong models these fail: a claim
+    //! without the job number (a late worker would run a part of the next job with the old
+    //! closure: the stale-job assertion), a part handed out twice (the counts).
     use super::*;
     use std::sync::Mutex;
 
@@ -227,6 +276,20 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn parts_are_claimed_once_in_order_and_only_for_the_current_job() {
+        // Job 7 of 3 parts, part 0 the caller's at the start.
+        let state = AtomicU64::new((7 << EPOCH_SHIFT) | 1);
+        assert_eq!(claim(&state, 6, 3), None, "a stale job claims nothing");
+        assert_eq!(claim(&state, 7, 3), Some(1));
+        assert_eq!(claim(&state, 7, 3), Some(2));
+        assert_eq!(claim(&state, 7, 3), None, "every part claimed");
+        assert_eq!(claim(&state, 7, 3), None);
+        state.store(8 << EPOCH_SHIFT | 1, Ordering::Relaxed);
+        assert_eq!(claim(&state, 7, 3), None, "the job is over");
+        assert_eq!(claim(&state, 8, 3), Some(1));
     }
 
     #[test]
