@@ -1,10 +1,11 @@
 //! `impact-bench threads`: does the element loop's team of threads ever make a run slower
 //! (issue 28)? The paper's Table 1 elasto-plastic scene (80 x 16 q4-sri, 3 ms) on one thread,
-//! on the team that never falls back (the team before issue 28), and on the default (the
-//! team, falling back to one thread when it is measured slower), each run in turn (interleaved
-//! A/B/C, so a change of the machine's load hits all three alike), the minimum of several
-//! runs; first on the machine as it is ("idle"), then with all cores but one busy (a spinning
-//! child process per core, started here and killed after). Writes `threads.csv`.
+//! on the team that never falls back (its parts claimed by whoever comes first, never timed),
+//! and on the default (the team, falling back to one thread when it is measured slower), each
+//! run in turn (interleaved A/B/C, so a change of the machine's load hits all three alike),
+//! the minimum of several runs; first on the machine as it is ("idle"), then with all cores but
+//! one busy (a spinning child process per core, started here and killed after). Writes
+//! `threads.csv`.
 //!
 //! Targets: busy, the default at most 1.1 x the one-thread time; idle, the default at most
 //! 1.05 x the team without fallback (it keeps the team's gain: the fallback's probes cost a
