@@ -53,15 +53,15 @@ pub struct Assembly {
     scratch: Vec<ChunkForces>,
     chunk_energy: Vec<ElementEnergy>,
     parallel: Option<Parallel>,
-    /// The row batches of one part (the whole mesh on one thread, and the team's parts run
-    /// one after another while it is fallen back: [`Parallel::rows`] on the team).
+    /// The row batches of the whole mesh as one part (on one thread, and while a team is
+    /// fallen back; [`Parallel::rows`] on the team).
     rows: RowBatches,
 }
 
 /// What the assembly on several threads needs besides the buffers.
 struct Parallel {
     team: Team,
-    /// Per step: on the team or its parts on the calling thread.
+    /// Per step: on the team, or the whole mesh on the calling thread.
     fallback: Fallback,
     /// The row batches the team's parts scatter whole (those without an element on a
     /// shared node).
@@ -324,7 +324,10 @@ impl Assembly {
                 unsafe { energies.slice(c..c + 1)[0] = energy };
             }
         };
-        let on_team = self.parallel.as_mut().is_some_and(|p| p.fallback.team_now());
+        let on_team = self
+            .parallel
+            .as_mut()
+            .is_some_and(|p| p.fallback.team_now());
         match &mut self.parallel {
             Some(parallel) if on_team => {
                 let kept = Disjoint::new(&mut parallel.kept);
