@@ -2,7 +2,7 @@
 
 References: ASME V&V 10.1-2012, validation approach 1 (tapered cantilever, tip deflection):
 model N(-14.2, 0.71/3) mm against experiment N(-15.0, 0.75/3) mm, area metric 0.800 mm, 5.3 %
-of the experimental mean (as quoted in ../shared/BENCHMARKS.md); two normals of equal mean, whose
+of the experimental mean (ASME V&V 10.1-2012, section 4, the worked example); two normals of equal mean, whose
 area is |s2 - s1| sqrt(2 / pi) (the 1-Wasserstein distance) while the signed integral of
 F_a - F_b is 0: an implementation that forgets the absolute value fails there. ASME V&V 20-2009
 for E = S - D and u_val."""

@@ -1,5 +1,5 @@
 //! The `viscoplastic-truss` builtin: Symonds and Ting's uniform-strain viscoplastic truss (the
-//! Abaqus benchmark "uniform strain, viscoplastic truss"; `../shared/BENCHMARKS.md`): a bar
+//! Abaqus Benchmarks Manual, section 3.1.3 "Uniform strain, viscoplastic truss"): a bar
 //! of L = 25.4 mm and A = 64.52 mm^2 (E = 207 GPa, sigma_0 = 276 MPa without hardening,
 //! rho = 7827 kg/m^3, Cowper-Symonds D = 40 1/s, p = 5) fixed at one end, a mass of
 //! 5.254 kg at the other moving at 5.08 m/s along the bar. Published: the stress rises to
