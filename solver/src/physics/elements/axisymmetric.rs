@@ -27,10 +27,10 @@ use crate::input::error::{Error, Result};
 use crate::lanes::real::{Real, THIRD};
 use crate::lanes::simd::Lanes;
 use crate::mesh::Mesh;
-use crate::physics::element::{
+use crate::physics::elements::element::{
     gauss_geometry, shape, Formulation, FullQ4, OnePointQ4, SelectiveQ4, GAUSS_XI,
 };
-use crate::physics::geometry::{SharedBatches, Vector};
+use crate::physics::elements::geometry::{SharedBatches, Vector};
 
 /// A plane element formulation in the axisymmetric geometry.
 pub struct Axisymmetric<F> {
