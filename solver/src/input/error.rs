@@ -1,7 +1,9 @@
 //! Errors: bad input (with file, line, column, field, value and what is allowed) and run-time
 //! failures (instability, the contact law's maximum), never panics.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use serde_saphyr::Spanned;
 
 /// Where a value sits in a file, `file:line:column` (1-based line and column; line 0 = the
 /// file only). Scenes and the harness's case files use this one type.
@@ -18,6 +20,26 @@ impl std::fmt::Display for SourceLocation {
             write!(f, "{}", self.file.display())
         } else {
             write!(f, "{}:{}:{}", self.file.display(), self.line, self.column)
+        }
+    }
+}
+
+impl SourceLocation {
+    /// A location naming only the file.
+    pub fn file(path: &Path) -> SourceLocation {
+        SourceLocation {
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+        }
+    }
+
+    /// Where the parser found `spanned` in `path`.
+    pub fn of<T>(path: &Path, spanned: &Spanned<T>) -> SourceLocation {
+        SourceLocation {
+            file: path.to_path_buf(),
+            line: spanned.referenced.line(),
+            column: spanned.referenced.column(),
         }
     }
 }

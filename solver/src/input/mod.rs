@@ -1,16 +1,35 @@
-//! Input: the scene read from YAML and validated ([`scene`], its parser errors named by
-//! [`yaml_field`]), overrides at the scene's dotted paths ([`overrides`]), the cost of a scene
-//! estimated before anything is allocated ([`budget`]), a time step that makes no run
-//! ([`time_step`]), and the errors every stage reports
-//! ([`error`]).
+//! Input, from the ground up: the errors every stage reports ([`error`]) and where each
+//! field was written ([`spans`]); the scene's types ([`scene`]: the file as written and the
+//! validated scene, importing nothing else of this folder); the scene read, overridden at its
+//! dotted paths ([`overrides`]) and validated ([`validate`], its parser errors named by
+//! [`yaml_field`]); the cost of a scene estimated before anything is allocated ([`estimate`]:
+//! [`budget`], [`time_step`]); and the inputs that look wrong ([`plausibility`]).
 
-pub mod budget;
 pub mod error;
-pub mod geometry;
+pub mod estimate;
 pub mod overrides;
 pub mod plausibility;
-pub mod rate_law;
 pub mod scene;
 pub mod spans;
-pub mod time_step;
+pub mod validate;
 pub mod yaml_field;
+
+// The modules' paths before the scene's types, their validation and the estimates had their
+// folders, kept for the other crates.
+pub use estimate::{budget, time_step};
+
+/// The strain-rate law's types (`material.plasticity.rate`), at their path before the
+/// scene's types had their folder.
+pub mod rate_law {
+    pub use super::scene::{
+        johnson_cook_42crmo4, CowperSymondsFile, JohnsonCookFile, PowerCurve, RateFile, RateLaw,
+        Thermal, ThermalFile,
+    };
+}
+
+/// `geometry: plane-strain | axisymmetric`, at its path before the scene's types had their
+/// folder.
+pub mod geometry {
+    pub use super::scene::Geometry;
+    pub use super::validate::geometry::{validated, Choices};
+}

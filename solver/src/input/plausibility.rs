@@ -18,31 +18,14 @@
 
 use std::fmt;
 
-use crate::input::budget::{bytes, count, p_wave_speed, Estimate, MANY_STEPS};
 use crate::input::error::{shown, SourceLocation};
+use crate::input::estimate::budget::{Estimate, MANY_STEPS};
+use crate::input::estimate::measures::{bytes, count, p_wave_speed};
 use crate::input::scene::{DtChoice, ElementKind, End, Load, Scene};
 
-/// One input that looks wrong.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Warning {
-    pub location: SourceLocation,
-    /// Dotted field name, e.g. `plate.length`.
-    pub field: String,
-    /// The value as read (or as written, for a quoted one).
-    pub value: String,
-    /// Why it looks wrong and what was probably meant.
-    pub message: String,
-}
-
-impl fmt::Display for Warning {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}: {} = {}: {}",
-            self.location, self.field, self.value, self.message
-        )
-    }
-}
+// Kept at their paths before the scene's types and the measures had their files.
+pub use crate::input::estimate::measures::{extreme_fields, extreme_inputs, EXTREME};
+pub use crate::input::scene::Warning;
 
 /// Plate length and width above this (m) look like millimetres: every plate of 10 mm or more
 /// given in mm crosses it, and a clamped plate of more than 10 m struck by a line nose is no
@@ -67,10 +50,6 @@ pub const YIELD_STRESS_MIN: f64 = 1.0e5;
 /// Impactor speeds (m/s) above this are no low-velocity impact (no equation of state, no
 /// erosion here); 10 m/s in mm/s is 10 000.
 pub const VELOCITY_MAX: f64 = 1.0e3;
-/// SI values of this problem lie between ~1e-12 (time steps, s) and ~1e13 (moduli, Pa); an
-/// input beyond 1e-30 .. 1e30 in magnitude is a typo, and products of two such numbers leave
-/// double precision (inf, NaN).
-pub const EXTREME: (f64, f64) = (1.0e-30, 1.0e30);
 /// VTK field output beyond this many bytes is announced with its size.
 pub const FIELD_BYTES_WARNING: f64 = 1.0e9;
 /// The estimated stable step is within this factor of the solver's own (budget.rs); a history
@@ -192,7 +171,8 @@ impl Finder<'_> {
             // m = E W dt^2 / 4 the impactor bounces within a step.
             let dt = Estimate::of(s).dt;
             let bound = m.youngs_modulus * p.width * dt * dt / 4.0;
-            let runs = crate::input::time_step::check_steps(s, dt).is_ok() && bound.is_finite();
+            let runs =
+                crate::input::estimate::time_step::check_steps(s, dt).is_ok() && bound.is_finite();
             if runs && i.mass < bound && !self.warned("load.impactor.mass") {
                 self.warn("load.impactor.mass", shown(i.mass), format!(
                     "below E W dt^2 / 4 = {bound:.3e} kg (youngs_modulus, plate.width and the time step of about {dt:.2e} s): the explicit contact coupling (eq. 21) is not stable for so light an impactor against a contact as stiff as the plate, it bounces within a step; the run's results will not be physical"
@@ -287,7 +267,7 @@ impl Finder<'_> {
     fn output(&mut self) {
         let s = self.scene;
         let e = Estimate::of(s);
-        if crate::input::time_step::check_steps(s, e.dt).is_err() {
+        if crate::input::estimate::time_step::check_steps(s, e.dt).is_err() {
             return; // no run: the time step's refusal says why
         }
         // Below this the interval is below the step whatever the solver's own estimate.
@@ -390,30 +370,6 @@ fn token_at(lines: &[&str], at: &SourceLocation) -> Option<String> {
     }
     let end = rest.find([',', '}', ']', '#']).unwrap_or(rest.len());
     Some(rest[..end].trim().to_string())
-}
-
-/// The numbers beyond [`EXTREME`] in magnitude: above 1e30, or below 1e-30 for a quantity
-/// the scene requires to be > 0 (a quantity that may be 0, such as a Poisson's ratio or a
-/// probe's coordinate, may be as small as it likes), in field order.
-pub fn extreme_fields(scene: &Scene) -> Vec<(String, f64)> {
-    let (tiny, huge) = EXTREME;
-    scene
-        .fields
-        .iter()
-        .filter_map(|(field, read)| {
-            let x = read.value?;
-            let a = x.abs();
-            (a > huge || (read.positive && a < tiny)).then(|| (field.to_string(), x))
-        })
-        .collect()
-}
-
-/// [`extreme_fields`] as `field = value`, for a run whose numbers overflowed (inf or NaN).
-pub fn extreme_inputs(scene: &Scene) -> Vec<String> {
-    extreme_fields(scene)
-        .into_iter()
-        .map(|(field, x)| format!("{field} = {}", shown(x)))
-        .collect()
 }
 
 #[cfg(test)]

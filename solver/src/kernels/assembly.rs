@@ -21,8 +21,8 @@ use crate::kernels::row_batches::{add_run, Pending, RowBatches};
 use crate::kernels::workers::{part_range, threads_here, Team};
 use crate::lanes::heap::vec_bytes;
 use crate::lanes::simd::{Kernel, Lanes, LANES};
-use crate::physics::element::{ElementEnergy, ElementVector, Energy};
-use crate::physics::geometry::Vector;
+use crate::physics::elements::element::{ElementEnergy, ElementVector, Energy};
+use crate::physics::elements::geometry::Vector;
 
 /// Elements per task.
 pub const CHUNK: usize = 64;
@@ -482,7 +482,7 @@ mod tests {
     //! order on one thread): bit-identical nodal forces, energies and states for 1 to 4
     //! threads, on a mesh whose element count is not a multiple of the chunk.
     use super::*;
-    use crate::physics::element::scatter_add;
+    use crate::physics::elements::element::scatter_add;
 
     /// A 13 x 11 structured mesh (143 elements, 168 nodes), counter-clockwise nodes, and one
     /// more node on no element (its force must come out 0 on every path).

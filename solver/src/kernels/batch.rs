@@ -14,7 +14,7 @@
 //! [`ConstitutiveModel::Batch`] per point of a batch), and the forces are written as whole
 //! batches ([`BatchForces`]) that the assembly scatters.
 //!
-//! - The stress path: [`crate::physics::element::response`] in lanes (strains, material update with
+//! - The stress path: [`crate::physics::elements::element::response`] in lanes (strains, material update with
 //!   the masked radial return, forces and hourglass), the scalar path's kernels instantiated
 //!   with [`Lanes`], on each formulation's batch of geometry.
 //! - The elastic screen of a plastic scene: a chunk whose every point is virgin and every
@@ -49,9 +49,9 @@ use crate::kernels::row_batches::RowBatches;
 use crate::kernels::stiffness::LinearKernel;
 use crate::lanes::real::Real;
 use crate::lanes::simd::{each_lane, Kernel, Lanes, Mask, LANES};
-use crate::physics::element::{response, ElementEnergy, Energy, Formulation};
-use crate::physics::geometry::Vector;
-use crate::physics::material::ConstitutiveModel;
+use crate::physics::elements::element::{response, ElementEnergy, Energy, Formulation};
+use crate::physics::elements::geometry::Vector;
+use crate::physics::materials::material::ConstitutiveModel;
 
 const _: () = assert!(CHUNK % LANES == 0, "batches must not straddle chunks");
 

@@ -18,9 +18,9 @@ use crate::kernels::stiffness::LinearKernel;
 use crate::lanes::heap::vec_bytes;
 use crate::lanes::real::Real;
 use crate::lanes::simd::{Lanes, LANES};
-use crate::physics::element::{ElementEnergy, ElementVector, Energy, Formulation};
-use crate::physics::geometry::Vector;
-use crate::physics::material::ConstitutiveModel;
+use crate::physics::elements::element::{ElementEnergy, ElementVector, Energy, Formulation};
+use crate::physics::elements::geometry::Vector;
+use crate::physics::materials::material::ConstitutiveModel;
 
 /// Fraction of the bound an element may reach on the fast path. `W` from the stiffness
 /// product (with node 0's translation removed, so no rigid motion cancels) is exact to
@@ -158,8 +158,12 @@ mod tests {
     //! near yield the screen must refuse every element the stress path lets yield.
     use super::*;
     use crate::mesh::Mesh;
-    use crate::physics::element::{element_response, gather, FullQ4, OnePointQ4, SelectiveQ4};
-    use crate::physics::material::{test_von_mises, Elastic, PlasticBatch, PlasticState, VonMises};
+    use crate::physics::elements::element::{
+        element_response, gather, FullQ4, OnePointQ4, SelectiveQ4,
+    };
+    use crate::physics::materials::material::{
+        test_von_mises, Elastic, PlasticBatch, PlasticState, VonMises,
+    };
 
     /// Element `e`'s point `states` in its lane of batches.
     fn in_batches(states: &[PlasticState], e: usize) -> Vec<PlasticBatch> {

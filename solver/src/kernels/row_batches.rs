@@ -10,7 +10,7 @@
 
 use crate::lanes::heap::vec_bytes;
 use crate::lanes::simd::{Lanes, LANES};
-use crate::physics::geometry::Vector;
+use crate::physics::elements::geometry::Vector;
 
 /// Doubles in a run of `LANES + 1` nodes (x and y).
 const RUN: usize = 2 * (LANES + 1);
@@ -148,7 +148,7 @@ impl Pending {
 mod tests {
     //! Reference: the element-by-element scatter in element order; bit for bit.
     use super::*;
-    use crate::physics::element::scatter_add;
+    use crate::physics::elements::element::scatter_add;
 
     #[test]
     fn a_row_batch_adds_as_the_element_scatter() {

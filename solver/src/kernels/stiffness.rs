@@ -13,11 +13,11 @@ use std::convert::Infallible;
 
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
-use crate::physics::element::{
+use crate::physics::elements::element::{
     element_stiffness, gather, ElementEnergy, ElementVector, Energy, Formulation,
 };
-use crate::physics::geometry::{SharedBatches, Vector};
-use crate::physics::material::Elastic;
+use crate::physics::elements::geometry::{SharedBatches, Vector};
+use crate::physics::materials::material::Elastic;
 
 /// Columns of `K_e` stored: all but node 0's two (see the module documentation).
 const STORED: usize = 6;
@@ -171,8 +171,8 @@ mod tests {
     //! material). `K_e u_e` is the same linear map, so forces and energies agree to round-off.
     use super::*;
     use crate::mesh::Mesh;
-    use crate::physics::element::{FullQ4, OnePointQ4, SelectiveQ4};
-    use crate::time_loop::integrator::PlateModel;
+    use crate::physics::elements::element::{FullQ4, OnePointQ4, SelectiveQ4};
+    use crate::time_loop::plate_model::PlateModel;
 
     fn compare<F: Formulation>(make: impl Fn(&Mesh) -> F) {
         let mesh = crate::mesh::test_plate_mesh(12, 4, 3.0);

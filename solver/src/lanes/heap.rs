@@ -1,5 +1,5 @@
 //! Heap memory a model holds, in bytes (issue 12's "<= 300 bytes per element"): the
-//! capacities of its arrays, counted by each part ([`crate::time_loop::integrator::PlateModel::heap_bytes`]).
+//! capacities of its arrays, counted by each part ([`crate::time_loop::plate_model::PlateModel::heap_bytes`]).
 
 /// Heap bytes of `v`: its capacity times the element size.
 pub fn vec_bytes<T>(v: &Vec<T>) -> usize {

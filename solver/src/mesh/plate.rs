@@ -1,7 +1,7 @@
 //! Structured quadrilateral mesh of the plate (half or full), its boundary conditions, the
 //! mid-span nodes and the lookup of probe points.
 
-use crate::input::geometry::Geometry;
+use crate::input::scene::Geometry;
 use crate::input::scene::{Ends, MeshSettings, MidSpanNode, Model, Plate, Scene};
 
 /// Nodes and 4-node elements (counter-clockwise). Coordinates in m.
@@ -237,7 +237,7 @@ fn unit_random(seed: u64) -> f64 {
 /// Why: stations summed or divided in floating point (`x += dx`, `t j / n`) give the
 /// elements of a uniform row sizes that differ in the last bits, so their geometry and
 /// stiffness matrices differ too and none of them can be shared
-/// ([`crate::physics::geometry::SharedBatches`] shares equal bits only): a q4-sri element held ~365
+/// ([`crate::physics::elements::geometry::SharedBatches`] shares equal bits only): a q4-sri element held ~365
 /// bytes on the paper's 80 x 16 mesh instead of ~240. Rounding moves an element's size by at
 /// most half a step (1.4e-17 m on the 0.2 m plate, 1e-14 of its 80 x 16 elements' height);
 /// the node coordinates are the mesh, so every element's geometry is that of its nodes.

@@ -6,18 +6,18 @@ use std::fs;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
-use crate::input::budget::Estimate;
 use crate::input::error::{Error, Result};
+use crate::input::estimate::budget::Estimate;
 use crate::input::scene::Scene;
 use crate::mesh::Mesh;
 use crate::output::out_dir::{
     check_out_dir, clean_stale_staging, in_user_terms, staging_dir, OutLock,
 };
+use crate::run::{simulate_into, simulate_within, Outcome};
 use crate::time_loop::energy::BalanceMonitor;
 use crate::time_loop::history::{History, HistorySink};
-use crate::time_loop::integrator::{FieldFrame, Observer};
+use crate::time_loop::observer::{FieldFrame, Observer};
 use crate::time_loop::progress::{Progress, ProgressMode};
-use crate::{simulate_into, simulate_within, Outcome};
 
 pub use crate::output::out_dir::OUTPUT_FILES;
 
@@ -248,7 +248,7 @@ pub fn simulate_scene_to_dir_with(
     for warning in &scene.warnings {
         say(format!("warning: {warning}"));
     }
-    crate::input::budget::check(scene, &estimate, options.max_memory)?;
+    crate::input::estimate::budget::check(scene, &estimate, options.max_memory)?;
     say(format!("simulate: {}", estimate.describe()));
     for (path, failure) in clean_stale_staging(out_dir) {
         say(match failure {
@@ -262,7 +262,7 @@ pub fn simulate_scene_to_dir_with(
     let staging = staging_dir(out_dir);
     let what = format!(
         "{} elements",
-        crate::input::budget::count(estimate.elements)
+        crate::input::estimate::budget::count(estimate.elements)
     );
     let result = run_into(
         scene,

@@ -24,7 +24,7 @@
 //! 1979), the Green-Naghdi rate's grows monotonically; the rotation comes from `F` itself, so
 //! a rigid rotation of any size maps the stress exactly, whatever the step; and the
 //! material sees a strain in a frame that does not rotate, so every model of
-//! [`crate::physics::material`] runs as it is. The Jaumann rate's appeal, a rotation from
+//! [`crate::physics::materials::material`] runs as it is. The Jaumann rate's appeal, a rotation from
 //! the spin that needs no polar decomposition, is worth nothing here: in 2D the polar
 //! rotation costs one square root.
 //!

@@ -6,9 +6,9 @@
 use crate::input::error::{Error, Result};
 use crate::input::scene::{DtUpdate, Scene};
 use crate::mesh::PlateMesh;
-use crate::physics::element::Formulation;
-use crate::physics::material::{von_mises, Stress};
-use crate::physics::rigid_wall::WallTotals;
+use crate::physics::contacts::rigid_wall::WallTotals;
+use crate::physics::elements::element::Formulation;
+use crate::physics::materials::material::{von_mises, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
 use crate::time_loop::schedule::Schedule;
 
@@ -430,7 +430,7 @@ pub(crate) fn locate_probes<F: Formulation>(
             })?;
             let coords = mesh.mesh.element_coords(element);
             let distance = |xi: &[f64; 2]| {
-                let n = crate::physics::element::shape(*xi);
+                let n = crate::physics::elements::element::shape(*xi);
                 let x: f64 = (0..4).map(|a| n[a] * coords[a][0]).sum();
                 let y: f64 = (0..4).map(|a| n[a] * coords[a][1]).sum();
                 (x - point[0]).powi(2) + (y - point[1]).powi(2)

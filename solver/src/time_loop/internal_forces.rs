@@ -16,15 +16,15 @@ use std::any::Any;
 use crate::kernels::assembly::{each_element, ScatterChunk};
 use crate::kernels::batch;
 use crate::lanes::simd::{dispatch, KernelPath};
-use crate::physics::axisymmetric::Axisymmetric;
-use crate::physics::element::{
+use crate::physics::elements::axisymmetric::Axisymmetric;
+use crate::physics::elements::element::{
     gather, response, ElementEnergy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
-use crate::physics::finite_element::UpdatedLagrangian;
-use crate::physics::finite_material::Finite;
-use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
-use crate::physics::rate_plasticity::ViscoPlastic;
-use crate::time_loop::integrator::PlateModel;
+use crate::physics::elements::finite_element::UpdatedLagrangian;
+use crate::physics::materials::finite_material::Finite;
+use crate::physics::materials::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::physics::materials::rate_plasticity::ViscoPlastic;
+use crate::time_loop::plate_model::PlateModel;
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     /// Internal forces at `u` into `f` (overwritten), updating the material states.
@@ -219,7 +219,7 @@ mod tests {
     //! (else each binary would compile its own copy, as before), with the generic body's bits.
     use super::*;
     use crate::mesh::test_plate_mesh;
-    use crate::physics::material::test_von_mises;
+    use crate::physics::materials::material::test_von_mises;
 
     /// Two models made by `make`: one through the function compiled here, one through the
     /// generic body, at a field that yields some points; the same forces and energies.

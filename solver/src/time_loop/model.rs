@@ -4,17 +4,17 @@
 //! dispatch over elements alone (static checks that need no material).
 
 use crate::input::error::{Error, Result, SourceLocation};
-use crate::input::geometry::Geometry;
+use crate::input::scene::Geometry;
 use crate::input::scene::{ElementKind, Kinematics, Scene};
 use crate::lanes::simd::KernelPath;
 use crate::mesh::{Mesh, PlateMesh};
-use crate::physics::axisymmetric::Axisymmetric;
-use crate::physics::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
-use crate::physics::finite_element::{FiniteResponse, UpdatedLagrangian};
-use crate::physics::finite_material::Finite;
-use crate::physics::material::{ConstitutiveModel, Elastic, VonMises};
-use crate::physics::rate_plasticity::ViscoPlastic;
-use crate::time_loop::integrator::PlateModel;
+use crate::physics::elements::axisymmetric::Axisymmetric;
+use crate::physics::elements::element::{Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use crate::physics::elements::finite_element::{FiniteResponse, UpdatedLagrangian};
+use crate::physics::materials::finite_material::Finite;
+use crate::physics::materials::material::{ConstitutiveModel, Elastic, VonMises};
+use crate::physics::materials::rate_plasticity::ViscoPlastic;
+use crate::time_loop::plate_model::PlateModel;
 
 /// One of the element formulations, chosen at run time.
 pub enum AnyFormulation {

@@ -1,8 +1,8 @@
 //! When the recorder writes: the output steps of `output.every` (history rows) and
 //! `output.fields.every` (field frames), `steps_to(k every, dt)` for k = 1, 2, ...
 
+pub(crate) use crate::input::estimate::time_step::steps_to;
 use crate::input::scene::DtUpdate;
-pub(crate) use crate::input::time_step::steps_to;
 
 /// A schedule of output steps every `every` s (every step when `None`): step 0 and the steps
 /// `steps_to(k every, dt)`, k = 1, 2, ..., each once; or, for a run whose step changes

@@ -10,10 +10,10 @@
 
 use crate::kernels::stiffness::LinearKernel;
 use crate::mesh::Mesh;
-use crate::physics::contact::LineContactLaw;
-use crate::physics::element::{element_max_eigenvalue, scatter_add, Formulation};
-use crate::physics::geometry::PointGeometry;
-use crate::physics::material::Elastic;
+use crate::physics::contacts::contact::LineContactLaw;
+use crate::physics::elements::element::{element_max_eigenvalue, scatter_add, Formulation};
+use crate::physics::elements::geometry::PointGeometry;
+use crate::physics::materials::material::Elastic;
 
 pub use crate::input::scene::Estimate;
 
@@ -172,8 +172,8 @@ mod tests {
     //! Reference: the dense eigenvalues of `M^-1/2 K M^-1/2` (nalgebra) on a small mesh; the
     //! element bound must lie above the global eigenvalue, the estimate just below it.
     use super::*;
-    use crate::physics::element::SelectiveQ4;
-    use crate::time_loop::integrator::PlateModel;
+    use crate::physics::elements::element::SelectiveQ4;
+    use crate::time_loop::plate_model::PlateModel;
 
     #[test]
     fn power_iteration_finds_the_largest_eigenvalue_below_the_element_bound() {

@@ -17,7 +17,7 @@
 pub const SMALLEST_STEP_FRACTION: f64 = 1e-3;
 
 /// Whether `t` (s) is the end `end` (s) of a run whose next step would be `step` (s): within
-/// 1e-9 of a step (as [`crate::input::time_step::steps_to`] counts a fixed run's steps).
+/// 1e-9 of a step (as [`crate::input::estimate::time_step::steps_to`] counts a fixed run's steps).
 pub(crate) fn at_end(end: f64, t: f64, step: f64) -> bool {
     end - t <= 1e-9 * step
 }

@@ -6,11 +6,11 @@
 
 use crate::input::scene::{Enforcement, SurfaceImpactor};
 use crate::mesh::PlateMesh;
-use crate::physics::element::{element_max_eigenvalue, Formulation};
+use crate::physics::contacts::nose_contact::{KinematicScratch, NoseForces, NoseSurface};
+use crate::physics::elements::element::{element_max_eigenvalue, Formulation};
 use crate::physics::impactor::CentralDifferenceImpactor;
-use crate::physics::material::ConstitutiveModel;
-use crate::physics::nose_contact::{KinematicScratch, NoseForces, NoseSurface};
-use crate::time_loop::integrator::PlateModel;
+use crate::physics::materials::material::ConstitutiveModel;
+use crate::time_loop::plate_model::PlateModel;
 
 /// The nose, the impactor and the contact forces at `t_n`.
 pub(crate) struct SurfaceImpact {

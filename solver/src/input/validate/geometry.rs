@@ -1,6 +1,5 @@
-//! `geometry: plane-strain | axisymmetric`: what the modelled section stands for, and the
-//! scenes the axisymmetric geometry cannot run (refused with the field, the value and the
-//! way out).
+//! `geometry: plane-strain | axisymmetric`: the scenes the axisymmetric geometry cannot run
+//! (refused with the field, the value and the way out).
 //!
 //! In the axisymmetric geometry the half model's section is a diametral half-section of a
 //! round plate: its clamped end `x = 0` is the rim, its symmetry line `x = length / 2` the
@@ -8,35 +7,10 @@
 //! (`ALGORITHM.md` section 3d). Forces, masses and energies are those of the whole ring (N, kg,
 //! J over 2 pi rad), as Abaqus reports them; `plate.width` is not used.
 
-use serde::Deserialize;
-
-use crate::input::error::{Error, Result, SourceLocation};
-use crate::input::scene::{Estimate, Load, Model};
 use serde_saphyr::Spanned;
 
-/// The section modelled: a slice of a plate of width `plate.width` (plane strain, the paper's
-/// model), or the half-section of a round plate whose axis is the mid-span line.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Geometry {
-    #[default]
-    PlaneStrain,
-    Axisymmetric,
-}
-
-impl Geometry {
-    /// The name in scenes and summaries.
-    pub fn name(self) -> &'static str {
-        match self {
-            Geometry::PlaneStrain => "plane-strain",
-            Geometry::Axisymmetric => "axisymmetric",
-        }
-    }
-
-    pub fn is_plane_strain(&self) -> bool {
-        *self == Geometry::PlaneStrain
-    }
-}
+use crate::input::error::{Error, Result, SourceLocation};
+use crate::input::scene::{Estimate, Geometry, Load, Model};
 
 /// The scene's parts the geometry must agree with.
 pub struct Choices<'a> {

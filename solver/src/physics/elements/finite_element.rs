@@ -24,12 +24,12 @@
 
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
-use crate::physics::element::{
+use crate::physics::elements::element::{
     small_strain_response, Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4,
 };
-use crate::physics::geometry::{PointGeometry, Vector};
+use crate::physics::elements::geometry::{PointGeometry, Vector};
 use crate::physics::kinematics::{self, deformation, det, inverse_with, piola, Gradient, Memory};
-use crate::physics::material::{ConstitutiveModel, Response};
+use crate::physics::materials::material::{ConstitutiveModel, Response};
 
 /// A small-strain element formulation under finite deformation.
 pub struct UpdatedLagrangian<F>(pub F);

@@ -27,10 +27,10 @@ use crate::input::error::{Error, Result};
 use crate::lanes::real::{Real, THIRD};
 use crate::lanes::simd::Lanes;
 use crate::mesh::Mesh;
-use crate::physics::element::{
+use crate::physics::elements::element::{
     gauss_geometry, shape, Formulation, FullQ4, OnePointQ4, SelectiveQ4, GAUSS_XI,
 };
-use crate::physics::geometry::{SharedBatches, Vector};
+use crate::physics::elements::geometry::{gradient_on, strain_on, NodeRows, SharedBatches, Vector};
 
 /// A plane element formulation in the axisymmetric geometry.
 pub struct Axisymmetric<F> {
@@ -158,38 +158,32 @@ impl Ring<Lanes> {
         (of(0), of(1), of(2))
     }
 
-    /// The mean strain `[xx, yy, theta, gamma_xy]` of the element displacements `u`.
+    /// The mean hoop strain `sum_a (-N_a / r) u_{x,a}` averaged (the mean rows' third),
+    /// summed over the nodes in order, from 0.
+    #[inline(always)]
+    fn mean_hoop<R: Real>(&self, at: usize, u: &Vector<R>) -> R {
+        let mut hoop = R::splat(0.0);
+        for a in 0..4 {
+            hoop += R::of_batch(&self.mean[2][a], at) * u[2 * a];
+        }
+        hoop
+    }
+
+    /// The mean strain `[xx, yy, theta, gamma_xy]` of the element displacements `u`: the
+    /// in-plane strain on the mean rows (a Gauss point's loop, [`strain_on`]) and the mean hoop
+    /// strain (each component its own sum: the bits of one loop over the nodes).
     #[inline(always)]
     fn mean_strain<R: Real>(&self, at: usize, u: &Vector<R>) -> [R; 4] {
-        let zero = R::splat(0.0);
-        let (mut xx, mut yy, mut hoop, mut xy) = (zero, zero, zero, zero);
-        for a in 0..4 {
-            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
-            let (dx, dy, h) = self.mean_rows::<R>(a, at);
-            xx += dx * ux;
-            yy += dy * uy;
-            hoop += h * ux;
-            xy += dy * ux + dx * uy;
-        }
-        [xx, yy, hoop, xy]
+        let [xx, yy, _, xy] = strain_on(&MeanRows(self), at, u);
+        [xx, yy, self.mean_hoop(at, u), xy]
     }
 
     /// The mean displacement gradient `[xX, xY, yX, yY]` of `u` and its mean hoop gradient
-    /// `u_r / R` (dimensionless): the one-point element's under finite deformation.
+    /// `u_r / R` (dimensionless): the one-point element's under finite deformation (a Gauss
+    /// point's gradient loop on the mean rows, [`gradient_on`]).
     #[inline(always)]
     pub(crate) fn mean_gradient<R: Real>(&self, at: usize, u: &Vector<R>) -> ([R; 4], R) {
-        let zero = R::splat(0.0);
-        let (mut g, mut hoop) = ([zero; 4], zero);
-        for a in 0..4 {
-            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
-            let (dx, dy, h) = self.mean_rows::<R>(a, at);
-            g[0] += dx * ux;
-            g[1] += dy * ux;
-            g[2] += dx * uy;
-            g[3] += dy * uy;
-            hoop += h * ux;
-        }
-        (g, hoop)
+        (gradient_on(&MeanRows(self), at, u), self.mean_hoop(at, u))
     }
 
     /// Adds `w P : d(mean F)/du` to `f` (N): `p` the in-plane first Piola-Kirchhoff stress
@@ -235,6 +229,17 @@ impl Ring<Lanes> {
             f[2 * a] += m * (dx + h);
             f[2 * a + 1] += m * dy;
         }
+    }
+}
+
+/// The ring's in-plane mean rows `(dN_a/dx, dN_a/dy)` averaged, as a point's strain rows.
+struct MeanRows<'a>(&'a Ring<Lanes>);
+
+impl NodeRows for MeanRows<'_> {
+    #[inline(always)]
+    fn rows<R: Real>(&self, a: usize, at: usize) -> (R, R) {
+        let m = &self.0.mean;
+        (R::of_batch(&m[0][a], at), R::of_batch(&m[1][a], at))
     }
 }
 

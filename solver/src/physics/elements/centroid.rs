@@ -21,7 +21,7 @@
 
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
-use crate::physics::geometry::{PointGeometry, Vector};
+use crate::physics::elements::geometry::{PointGeometry, Vector};
 
 /// dN_a/dx and dN_a/dy (1/m) of nodes 0 and 1 at the centroid of one element (`f64`) or of a
 /// batch ([`Lanes`]); nodes 2 and 3's are these negated (see the module documentation).

@@ -83,7 +83,7 @@ pub trait ConstitutiveModel: Sync + 'static {
         None
     }
     /// Whether the model keeps a finite-deformation memory per point
-    /// ([`crate::physics::finite_material::Finite`]); a finite-deformation formulation paired
+    /// ([`crate::physics::materials::finite_material::Finite`]); a finite-deformation formulation paired
     /// with one that does not gives the small-strain response (the linearisation about the
     /// reference configuration: stiffness matrices and stable-step bounds use it).
     const KEEPS_MEMORY: bool = false;
@@ -207,7 +207,7 @@ pub struct FlowCurve {
 
 impl FlowCurve {
     /// The piecewise-linear curve of `hardening`; `None` for a power law (which only the
-    /// rate-dependent model, [`crate::physics::rate_plasticity`], integrates).
+    /// rate-dependent model, [`crate::physics::materials::rate_plasticity`], integrates).
     pub fn new(yield_stress: f64, hardening: &Hardening, youngs_modulus: f64) -> Option<FlowCurve> {
         Some(match hardening {
             Hardening::Linear { tangent_modulus } => FlowCurve {
@@ -507,7 +507,7 @@ impl ConstitutiveModel for VonMises {
 
 impl VonMises {
     /// The rate-independent model of `spec`; `None` without plasticity or with a rate law
-    /// (that is [`crate::physics::rate_plasticity::ViscoPlastic`]'s).
+    /// (that is [`crate::physics::materials::rate_plasticity::ViscoPlastic`]'s).
     pub fn new(spec: &MaterialSpec) -> Option<VonMises> {
         let p = spec.plasticity.as_ref().filter(|p| p.rate.is_none())?;
         Some(VonMises {

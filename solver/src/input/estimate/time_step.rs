@@ -2,10 +2,10 @@
 //! it: a step of 0 s or not finite (`material.density: 1e-300` gives a P-wave speed of inf
 //! m/s), more than [`MAX_STEPS`] steps to the end, or no step at all (the end within 1e-9 of
 //! one step: `material.density: 1e300` gives a step of 5e141 s). Checked on the estimated
-//! step before anything is allocated ([`crate::input::budget::check`]) and on the run's own
+//! step before anything is allocated ([`crate::input::estimate::budget::check`]) and on the run's own
 //! step before its loop.
 
-use crate::input::budget::{count, p_wave_speed, smallest_element_length};
+use super::measures::{count, extreme_fields, p_wave_speed, smallest_element_length};
 use crate::input::error::{shown, Error, Result};
 use crate::input::scene::{DtChoice, End, Scene};
 
@@ -89,7 +89,7 @@ fn provenance(scene: &Scene) -> String {
 /// between ~1e4 (gels) and 1.2e12 Pa (diamond).
 fn culprit(scene: &Scene) -> (String, f64) {
     // An input beyond any physical magnitude that the step or the run's length depends on.
-    let extreme = crate::input::plausibility::extreme_fields(scene)
+    let extreme = extreme_fields(scene)
         .into_iter()
         .find(|(field, _)| !field.starts_with("output."));
     if let Some(found) = extreme {
@@ -141,7 +141,7 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    const EXAMPLE: &str = include_str!("../../../verification/scenes/example-elastic.yaml");
+    const EXAMPLE: &str = include_str!("../../../../verification/scenes/example-elastic.yaml");
 
     fn example() -> Scene {
         Scene::from_yaml(EXAMPLE, Path::new("example.yaml")).unwrap()

@@ -3,7 +3,10 @@
 //! hold is refused with the estimate in the message instead of dying in an allocation.
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::{DtChoice, ElementKind, End, Material, Model, Scene};
+use crate::input::scene::{DtChoice, ElementKind, End, Scene};
+
+pub use super::measures::{bytes, count, limit_above};
+use super::measures::{p_wave_speed, smallest_element_length};
 
 /// Resident bytes per element: the slope of the peak RSS (`/usr/bin/time -f %M`, one step,
 /// 2 threads) between 400 x 80 and 800 x 160 meshes of the example scenes, measured
@@ -176,72 +179,6 @@ impl Estimate {
     }
 }
 
-/// The plane-strain P-wave speed `sqrt(E (1 - nu) / (rho (1 + nu) (1 - 2 nu)))`, m/s.
-pub(crate) fn p_wave_speed(m: &Material) -> f64 {
-    let nu = m.poisson_ratio;
-    (m.youngs_modulus * (1.0 - nu) / (m.density * (1.0 + nu) * (1.0 - 2.0 * nu))).sqrt()
-}
-
-/// Smallest element length along x, m (mid-span for graded meshes).
-pub(crate) fn smallest_element_length(scene: &Scene) -> f64 {
-    let half_elements = match scene.mesh.model {
-        Model::Half => scene.mesh.nx,
-        Model::Full => scene.mesh.nx / 2,
-    }
-    .max(1) as f64;
-    let half_length = 0.5 * scene.plate.length;
-    let grading = scene.mesh.grading;
-    if half_elements <= 1.0 || grading == 1.0 {
-        return half_length / half_elements;
-    }
-    // Geometric sizes r^i, i = 0..n-1, r = grading^(-1/(n-1)): the last (r^(n-1) = 1/grading)
-    // over their sum.
-    let r = grading.powf(-1.0 / (half_elements - 1.0));
-    let total = (1.0 - r.powf(half_elements)) / (1.0 - r);
-    half_length / grading / total
-}
-
-/// `1.0e9`, `12 345` style counts: exact below a million, otherwise 3 digits.
-pub fn count(x: f64) -> String {
-    if x < 1.0e6 {
-        format!("{x:.0}")
-    } else {
-        format!("{x:.2e}")
-    }
-}
-
-/// Bytes in kB, MB, GB, TB (powers of 1000), 3 significant digits: `900 GB`, `23.1 GB`.
-pub fn bytes(b: f64) -> String {
-    let (x, unit) = scaled(b);
-    let digits = if x >= 100.0 || unit == "B" {
-        0
-    } else if x >= 10.0 {
-        1
-    } else {
-        2
-    };
-    format!("{x:.digits$} {unit}")
-}
-
-/// A `--max-memory` value at least `b`: two significant digits rounded up, `990G`.
-pub fn limit_above(b: f64) -> String {
-    let (x, unit) = scaled(b);
-    let step = if x >= 10.0 { 1.0 } else { 0.1 };
-    let up = ((x / step).ceil() * step * 10.0).round() / 10.0;
-    format!("{up}{}", unit.trim_end_matches('B'))
-}
-
-fn scaled(b: f64) -> (f64, &'static str) {
-    let units = ["B", "kB", "MB", "GB", "TB", "PB"];
-    let mut x = b;
-    let mut u = 0;
-    while x >= 1000.0 && u + 1 < units.len() {
-        x /= 1000.0;
-        u += 1;
-    }
-    (x, units[u])
-}
-
 /// Parses a memory size: `16G`, `500M`, `2.5GB`, `1e9` (bytes; powers of 1000).
 pub fn parse_bytes(text: &str) -> Option<f64> {
     let t = text.trim();
@@ -271,11 +208,11 @@ pub fn available_memory() -> Option<f64> {
 }
 
 /// Refuses a scene whose estimated time step makes no run
-/// ([`crate::input::time_step::check_steps`]) or whose memory estimate exceeds `max_memory`
+/// ([`super::time_step::check_steps`]) or whose memory estimate exceeds `max_memory`
 /// or, without it, the memory the machine has available (every run checks this before
 /// allocating: `crate::simulate`).
 pub fn check(scene: &Scene, estimate: &Estimate, max_memory: Option<f64>) -> Result<()> {
-    crate::input::time_step::check_steps(scene, estimate.dt)?;
+    super::time_step::check_steps(scene, estimate.dt)?;
     let (limit, whose) = match max_memory {
         Some(m) => (m, "the limit --max-memory"),
         None => match available_memory() {

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::input::geometry::Geometry;
+use crate::input::scene::Geometry;
 use crate::input::scene::{
     ContactLawChoice, DtUpdate, ElementKind, Enforcement, Kinematics, Load, MidSpanNode, Model,
     Scene,

@@ -15,9 +15,9 @@ use crate::lanes::heap::vec_bytes;
 use crate::lanes::real::{Real, THIRD};
 use crate::lanes::simd::{Lanes, LANES};
 use crate::mesh::Mesh;
-use crate::physics::centroid::CentroidGeometry;
-use crate::physics::geometry::{PointGeometry, SharedBatches, Vector, NODE_XI};
-use crate::physics::material::{ConstitutiveModel, Elastic};
+use crate::physics::elements::centroid::CentroidGeometry;
+use crate::physics::elements::geometry::{PointGeometry, SharedBatches, Vector, NODE_XI};
+use crate::physics::materials::material::{ConstitutiveModel, Elastic};
 
 pub type ElementVector = [f64; 8];
 
@@ -184,7 +184,7 @@ pub trait Formulation: Sync + 'static {
     fn heap_bytes(&self) -> usize;
     /// Internal nodal forces and energies of `at`, updating its points' material states
     /// ([`response`]); small strain ([`small_strain_response`]) unless the formulation is a
-    /// finite-deformation one ([`crate::physics::finite_element::UpdatedLagrangian`]).
+    /// finite-deformation one ([`crate::physics::elements::finite_element::UpdatedLagrangian`]).
     #[inline(always)]
     fn response<M: ConstitutiveModel, R: Real>(
         &self,

@@ -1,6 +1,6 @@
 //! The three elements of the axisymmetric geometry under finite deformation
 //! (`ALGORITHM.md` section 3e): [`FiniteResponse`] for [`Axisymmetric`], so that
-//! [`crate::physics::finite_element::UpdatedLagrangian`] runs them.
+//! [`crate::physics::elements::finite_element::UpdatedLagrangian`] runs them.
 //!
 //! The deformation gradient of a ring is block diagonal: the section's in-plane `F` (2 x 2)
 //! and the hoop stretch `F_theta = r / R = 1 + u_r / R` (`R` the point's reference radius).
@@ -24,12 +24,12 @@
 //!   element's hourglass forces on the total displacements (as in plane strain).
 
 use crate::lanes::real::{Real, THIRD};
-use crate::physics::axisymmetric::Axisymmetric;
-use crate::physics::element::{Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4};
-use crate::physics::finite_element::{add_energy, point_update, FiniteResponse};
-use crate::physics::geometry::Vector;
+use crate::physics::elements::axisymmetric::Axisymmetric;
+use crate::physics::elements::element::{Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4};
+use crate::physics::elements::finite_element::{add_energy, point_update, FiniteResponse};
+use crate::physics::elements::geometry::Vector;
 use crate::physics::kinematics::{self, deformation, det, piola};
-use crate::physics::material::ConstitutiveModel;
+use crate::physics::materials::material::ConstitutiveModel;
 
 impl FiniteResponse for Axisymmetric<FullQ4> {
     #[inline(always)]

@@ -1,14 +1,14 @@
 //! A material under finite deformation: any small-strain model `M`, run in the unrotated
 //! (Green-Naghdi) frame, with each point's kinematic memory kept beside its state
 //! ([`crate::physics::kinematics`]). The formulation
-//! ([`crate::physics::finite_element::UpdatedLagrangian`]) computes the unrotated strain and
+//! ([`crate::physics::elements::finite_element::UpdatedLagrangian`]) computes the unrotated strain and
 //! rotates the stress; this model holds the memory, passes the strain to `M` and reports the
 //! Cauchy stress of a converged state.
 
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
 use crate::physics::kinematics::{deformation, det, Memory, Rotation};
-use crate::physics::material::{ConstitutiveModel, Elastic, Response, Strain, Stress};
+use crate::physics::materials::material::{ConstitutiveModel, Elastic, Response, Strain, Stress};
 
 /// `M` under finite deformation.
 #[derive(Debug, Clone)]

@@ -1,6 +1,6 @@
 //! Rate-dependent von Mises plasticity (ALGORITHM.md section 4b): Cowper-Symonds and
 //! Johnson-Cook with adiabatic heating, integrated by the radial return of
-//! [`crate::physics::material::radial_return`] with a rate-dependent consistency condition.
+//! [`crate::physics::materials::material::radial_return`] with a rate-dependent consistency condition.
 //!
 //! Over a step `dt` the equivalent plastic strain grows by `dk` at the rate `dk / dt`
 //! (backward Euler), and the returned von Mises stress `q - 3 mu dk` must equal the dynamic
@@ -16,11 +16,11 @@
 //! softening `Theta(T) = 1 - T*^m` uses the temperature at the start of the step, and after
 //! the step `T` rises by `beta w / (rho c)` with `w` the step's plastic work density.
 
-use crate::input::rate_law::{RateLaw, Thermal};
 use crate::input::scene::{Hardening, Material as MaterialSpec};
+use crate::input::scene::{RateLaw, Thermal};
 use crate::lanes::real::Real;
 use crate::lanes::simd::Lanes;
-use crate::physics::material::{
+use crate::physics::materials::material::{
     radial_return, ConstitutiveModel, Elastic, FlowCurve, FlowLaw, PlasticBatch, PlasticState,
     Response, Strain, Stress, VonMises,
 };
@@ -415,8 +415,8 @@ mod tests {
     //! constant-rate uniaxial strain (Cowper-Symonds and Johnson-Cook), the work identity, the
     //! Newton iteration's quadratic convergence, and the scalar path's bits in lanes.
     use super::*;
-    use crate::input::rate_law::{RateLaw, Thermal};
     use crate::input::scene::Plasticity;
+    use crate::input::scene::{RateLaw, Thermal};
     use approx::assert_relative_eq;
 
     fn steel(hardening: Hardening, yield_stress: f64, law: RateLaw, dt: f64) -> ViscoPlastic {
@@ -596,7 +596,7 @@ mod tests {
         // the Newton step; the bad-input suite, issue 28).
         let (e, et) = (200e9, 2e9);
         let h2 = 2.0 * e * et / (e - et);
-        let doubled = crate::physics::material::VonMises::new(&MaterialSpec {
+        let doubled = crate::physics::materials::material::VonMises::new(&MaterialSpec {
             density: 7850.0,
             youngs_modulus: e,
             poisson_ratio: 0.3,
@@ -630,7 +630,7 @@ mod tests {
         };
         let dt = 1e-5;
         let m = steel(h.clone(), 250e6, law, dt);
-        let ri = crate::physics::material::VonMises::new(&MaterialSpec {
+        let ri = crate::physics::materials::material::VonMises::new(&MaterialSpec {
             density: 7850.0,
             youngs_modulus: 200e9,
             poisson_ratio: 0.3,

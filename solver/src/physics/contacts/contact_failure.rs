@@ -5,7 +5,7 @@
 
 use crate::input::error::shown;
 use crate::input::scene::{ContactLawChoice, Impactor, Scene};
-use crate::physics::contact::{BeyondMaximum, LineContactLaw};
+use crate::physics::contacts::contact::{BeyondMaximum, LineContactLaw};
 
 /// Energy balance error above which a run that fails in the contact solve is taken to have
 /// gone unstable first: stable runs stay below 1e-2 (`impact-bench stability`).
@@ -106,7 +106,7 @@ pub fn light_impactor_cause(scene: &Scene) -> String {
     };
     let column = scene.material.density
         * scene.plate.thickness
-        * crate::input::budget::smallest_element_length(scene)
+        * crate::input::estimate::measures::smallest_element_length(scene)
         * scene.plate.width;
     if i.mass >= LIGHT_IMPACTOR * column {
         return String::new();

@@ -98,16 +98,7 @@ impl PointGeometry<Lanes> {
     /// Small strain `[xx, yy, 0, gamma_xy]` of an element displacement vector at `at`.
     #[inline(always)]
     pub fn strain<R: Real>(&self, at: usize, u: &Vector<R>) -> [R; 4] {
-        let zero = R::splat(0.0);
-        let (mut xx, mut yy, mut xy) = (zero, zero, zero);
-        for a in 0..4 {
-            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
-            let (dx, dy) = (self.dndx::<R>(a, at), self.dndy::<R>(a, at));
-            xx += dx * ux;
-            yy += dy * uy;
-            xy += dy * ux + dx * uy;
-        }
-        [xx, yy, zero, xy]
+        strain_on(self, at, u)
     }
 
     /// Volumetric strain `div u` at `at` (summed as an iterator sum: from -0.0).
@@ -124,17 +115,7 @@ impl PointGeometry<Lanes> {
     /// ([`crate::physics::kinematics::Gradient`]; `X` the coordinates this geometry was made on).
     #[inline(always)]
     pub fn gradient<R: Real>(&self, at: usize, u: &Vector<R>) -> [R; 4] {
-        let zero = R::splat(0.0);
-        let mut g = [zero; 4];
-        for a in 0..4 {
-            let (ux, uy) = (u[2 * a], u[2 * a + 1]);
-            let (dx, dy) = (self.dndx::<R>(a, at), self.dndy::<R>(a, at));
-            g[0] += dx * ux;
-            g[1] += dy * ux;
-            g[2] += dx * uy;
-            g[3] += dy * uy;
-        }
-        g
+        gradient_on(self, at, u)
     }
 
     /// Adds `w P dN_a/dX` (first Piola-Kirchhoff stress `P`, row-major `[xX, xY, yX, yY]`,
@@ -168,6 +149,54 @@ impl PointGeometry<Lanes> {
             *x += add;
         }
     }
+}
+
+/// The in-plane rows of a point's strain operator: `(dN_a/dx, dN_a/dy)` of node `a` at `at`,
+/// 1/m. A Gauss point's ([`PointGeometry`]) and the axisymmetric ring's mean rows
+/// (`axisymmetric.rs`) are read by the same strain and gradient loops ([`strain_on`],
+/// [`gradient_on`]).
+pub(crate) trait NodeRows {
+    fn rows<R: Real>(&self, a: usize, at: usize) -> (R, R);
+}
+
+impl NodeRows for PointGeometry<Lanes> {
+    #[inline(always)]
+    fn rows<R: Real>(&self, a: usize, at: usize) -> (R, R) {
+        (self.dndx::<R>(a, at), self.dndy::<R>(a, at))
+    }
+}
+
+/// Small strain `[xx, yy, 0, gamma_xy]` of an element displacement vector `u` on the rows of
+/// `g` at `at`: each component summed over the nodes in order, from 0.
+#[inline(always)]
+pub(crate) fn strain_on<G: NodeRows, R: Real>(g: &G, at: usize, u: &Vector<R>) -> [R; 4] {
+    let zero = R::splat(0.0);
+    let (mut xx, mut yy, mut xy) = (zero, zero, zero);
+    for a in 0..4 {
+        let (ux, uy) = (u[2 * a], u[2 * a + 1]);
+        let (dx, dy) = g.rows::<R>(a, at);
+        xx += dx * ux;
+        yy += dy * uy;
+        xy += dy * ux + dx * uy;
+    }
+    [xx, yy, zero, xy]
+}
+
+/// Displacement gradient `du/dX`, row-major `[xX, xY, yX, yY]`, of `u` on the rows of `g`
+/// at `at`: each entry summed over the nodes in order, from 0.
+#[inline(always)]
+pub(crate) fn gradient_on<G: NodeRows, R: Real>(g: &G, at: usize, u: &Vector<R>) -> [R; 4] {
+    let zero = R::splat(0.0);
+    let mut grad = [zero; 4];
+    for a in 0..4 {
+        let (ux, uy) = (u[2 * a], u[2 * a + 1]);
+        let (dx, dy) = g.rows::<R>(a, at);
+        grad[0] += dx * ux;
+        grad[1] += dy * ux;
+        grad[2] += dx * uy;
+        grad[3] += dy * uy;
+    }
+    grad
 }
 
 /// Per-element data in batches of [`LANES`] elements (`B`: one batch in lanes), each
