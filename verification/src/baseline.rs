@@ -249,11 +249,11 @@ fn overlay(before: &Path, now: &Path, column: &str, name: &str, dir: &Path) -> R
             .1;
         Ok(t.iter().copied().zip(v.iter().copied()).collect())
     };
-    let (quantity, unit) = crate::plot::column_axis(column);
-    let svg = crate::plot::svg_plot(
+    let (quantity, unit) = impact_plots::line_plot::column_axis(column);
+    let svg = impact_plots::line_plot::svg_plot(
         &format!("{name}: {quantity}"),
-        crate::plot::Axis::new("time", "s"),
-        crate::plot::Axis::new(&quantity, unit),
+        impact_plots::line_plot::Axis::new("time", "s"),
+        impact_plots::line_plot::Axis::new(&quantity, unit),
         &[
             ("baseline".to_string(), series(before)?, true),
             ("current".to_string(), series(now)?, false),

@@ -23,8 +23,6 @@ pub mod html_tokens;
 pub mod jobs;
 pub mod lint;
 pub mod markdown;
-pub mod plot;
-pub mod plot_style;
 pub mod repo;
 pub mod report;
 pub mod report_paper;
@@ -38,3 +36,7 @@ pub mod uq_distribution;
 pub mod uq_report;
 pub mod uq_study;
 pub mod verdict;
+
+// The plots' modules before they became the crate `impact-plots` (shared with the benchmarks).
+pub use impact_plots::line_plot as plot;
+pub use impact_plots::style as plot_style;

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use crate::plot::{
+use impact_plots::line_plot::{
     column_axis, quantity_of, svg_panels, svg_plot, svg_plot_framed, Axis, Frame, Series,
 };
 

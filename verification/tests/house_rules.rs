@@ -10,8 +10,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates' source folders, relative to the workspace root.
-const CRATES: [&str; 5] = [
+const CRATES: [&str; 6] = [
     "solver/src",
+    "plots/src",
     "verification/src",
     "benchmarks/src",
     "python/src",

@@ -7,7 +7,8 @@
 use plotters::coord::ranged1d::Ranged;
 use plotters::coord::types::RangedCoordf64;
 
-use crate::plot_style;
+use crate::picture::{Area, DataArea, Picture};
+use crate::style::{self, Entry, Mark};
 
 /// One curve: legend label, (x, y) points, dashed (a reference) or solid (computed).
 pub type Series = (String, Vec<(f64, f64)>, bool);
@@ -199,33 +200,25 @@ fn bounds(series: &[Series]) -> Result<(f64, f64, f64, f64), String> {
     Ok((x0, x1, y0 - pad, y1 + pad))
 }
 
-/// The chart's size in pixels; the legend strip goes below it.
-const WIDTH: u32 = 560;
-const CHART_HEIGHT: u32 = 340;
-/// The plot's outer margin, pixels.
-const MARGIN: u32 = 8;
+/// The picture's sizes: the chart 560 x 340 pixels, the legend's strip below it.
+const PICTURE: Picture = Picture {
+    width: 560,
+    chart_height: 340,
+    margin: 8,
+};
 
-/// The legend entries of `series` (and the band's), coloured by name.
-fn legend_entries(series: &[Series], frame: &Frame) -> Vec<plot_style::Entry> {
-    let names: Vec<&str> = series.iter().map(|s| s.0.as_str()).collect();
-    let mut entries: Vec<plot_style::Entry> = series
+/// The legend entries of `series` (references dashed) and the band's, coloured by name.
+fn legend_entries(series: &[Series], frame: &Frame) -> Vec<Entry> {
+    let curves: Vec<(&str, Mark)> = series
         .iter()
-        .zip(plot_style::colours(&names))
-        .map(|(s, colour)| plot_style::Entry {
-            label: s.0.clone(),
-            colour,
-            mark: if s.2 {
-                plot_style::Mark::Dashed
-            } else {
-                plot_style::Mark::Line
-            },
-        })
+        .map(|s| (s.0.as_str(), if s.2 { Mark::Dashed } else { Mark::Line }))
         .collect();
+    let mut entries = style::entries(&curves);
     if let Some((_, _, label)) = &frame.band {
-        entries.push(plot_style::Entry {
+        entries.push(Entry {
             label: label.clone(),
             colour: BAND,
-            mark: plot_style::Mark::Band,
+            mark: Mark::Band,
         });
     }
     entries
@@ -240,81 +233,77 @@ fn try_plot(
     y: Axis,
     series: &[Series],
     frame: &Frame,
-) -> Result<String, String> {
-    use plotters::prelude::*;
+) -> Result<String, Box<dyn std::error::Error>> {
     let (x0, x1, mut y0, mut y1) = bounds(series)?;
     if let Some((lo, hi)) = frame.y_range {
         (y0, y1) = (lo, hi);
     }
-    let xfmt = tick_labels(x0, x1, x.unit);
-    let yfmt = tick_labels(y0, y1, y.unit);
+    let entries = legend_entries(series, frame);
+    PICTURE.svg(&entries, |area| {
+        chart(
+            area,
+            title,
+            (x, y),
+            (x0..x1, y0..y1),
+            series,
+            &entries,
+            frame,
+        )
+    })
+}
+
+/// The chart: axes with their tick labels, the band, each curve in its entry's colour
+/// (dashed references; the points of a short computed curve marked); its data area.
+fn chart(
+    area: &Area,
+    title: &str,
+    (x, y): (Axis, Axis),
+    (xs, ys): (std::ops::Range<f64>, std::ops::Range<f64>),
+    series: &[Series],
+    entries: &[Entry],
+    frame: &Frame,
+) -> Result<DataArea, Box<dyn std::error::Error>> {
+    use plotters::prelude::*;
+    let xfmt = tick_labels(xs.start, xs.end, x.unit);
+    let yfmt = tick_labels(ys.start, ys.end, y.unit);
     // A long title gets a smaller font rather than running off the plot.
     let title_size = (15.0f64).min(1000.0 / title.chars().count().max(1) as f64);
-    let entries = legend_entries(series, frame);
-    let labels: Vec<&str> = entries.iter().map(|e| e.label.as_str()).collect();
-    let legend_width = WIDTH - 2 * MARGIN;
-    let legend_height = plot_style::layout(&labels, legend_width).1;
-    let mut text = String::new();
-    let area;
-    {
-        let root =
-            SVGBackend::with_string(&mut text, (WIDTH, CHART_HEIGHT + legend_height + MARGIN))
-                .into_drawing_area();
-        root.fill(&WHITE).map_err(|e| e.to_string())?;
-        // The chart above, the legend's strip below: the legend never covers the data.
-        let (chart_area, _) = root.split_vertically(CHART_HEIGHT);
-        let mut chart = ChartBuilder::on(&chart_area)
-            .caption(title, ("sans-serif", title_size.max(9.0)))
-            .margin(MARGIN)
-            .margin_right(30)
-            .x_label_area_size(34)
-            .y_label_area_size(76)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc(x.name)
-            .y_desc(y.name)
-            .x_labels(TICKS)
-            .y_labels(TICKS)
-            .x_label_formatter(&xfmt)
-            .y_label_formatter(&yfmt)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        if let Some((lo, hi, _)) = &frame.band {
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [(x0, lo.max(y0)), (x1, hi.min(y1))],
-                    BAND.mix(0.25).filled(),
-                )))
-                .map_err(|e| e.to_string())?;
-        }
-        for ((_, data, dashed), entry) in series.iter().zip(&entries) {
-            let color = entry.colour.to_rgba();
-            let data: Vec<(f64, f64)> = downsample(data, 1200);
-            if *dashed {
-                chart
-                    .draw_series(DashedLineSeries::new(data, 6, 4, color.stroke_width(2)))
-                    .map_err(|e| e.to_string())?;
-            } else {
-                chart
-                    .draw_series(LineSeries::new(data.clone(), color.stroke_width(1)))
-                    .map_err(|e| e.to_string())?;
-                if data.len() <= 12 {
-                    chart
-                        .draw_series(data.iter().map(|p| Circle::new(*p, 3, color.filled())))
-                        .map_err(|e| e.to_string())?;
-                }
+    let (x0, x1, y0, y1) = (xs.start, xs.end, ys.start, ys.end);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", title_size.max(9.0)))
+        .margin(PICTURE.margin)
+        .margin_right(30)
+        .x_label_area_size(34)
+        .y_label_area_size(76)
+        .build_cartesian_2d(xs, ys)?;
+    chart
+        .configure_mesh()
+        .x_desc(x.name)
+        .y_desc(y.name)
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_label_formatter(&xfmt)
+        .y_label_formatter(&yfmt)
+        .draw()?;
+    if let Some((lo, hi, _)) = &frame.band {
+        chart.draw_series(std::iter::once(Rectangle::new(
+            [(x0, lo.max(y0)), (x1, hi.min(y1))],
+            BAND.mix(0.25).filled(),
+        )))?;
+    }
+    for ((_, data, dashed), entry) in series.iter().zip(entries) {
+        let color = entry.colour.to_rgba();
+        let data: Vec<(f64, f64)> = downsample(data, 1200);
+        if *dashed {
+            chart.draw_series(DashedLineSeries::new(data, 6, 4, color.stroke_width(2)))?;
+        } else {
+            chart.draw_series(LineSeries::new(data.clone(), color.stroke_width(1)))?;
+            if data.len() <= 12 {
+                chart.draw_series(data.iter().map(|p| Circle::new(*p, 3, color.filled())))?;
             }
         }
-        area = chart.plotting_area().get_pixel_range();
-        root.present().map_err(|e| e.to_string())?;
     }
-    let legend = plot_style::legend_svg(&entries, MARGIN, CHART_HEIGHT, legend_width);
-    Ok(plot_style::append(
-        &text,
-        &(plot_style::data_area(area.0, area.1) + &legend),
-    ))
+    Ok(chart.plotting_area().get_pixel_range())
 }
 
 fn downsample(d: &[(f64, f64)], n: usize) -> Vec<(f64, f64)> {
@@ -441,10 +430,10 @@ mod tests {
             .collect();
         let axis = Axis::new("time", "s");
         let svg = svg_plot("eight curves", axis, axis, &series);
-        let data = plot_style::marked_rect(&svg, "data-area").expect("data area marked");
-        let legend = plot_style::marked_rect(&svg, "legend-box").expect("legend marked");
-        assert!(!plot_style::overlap(data, legend), "{data:?} {legend:?}");
-        assert!(legend[1] >= CHART_HEIGHT as f64, "{legend:?}");
+        let data = style::marked_rect(&svg, "data-area").expect("data area marked");
+        let legend = style::marked_rect(&svg, "legend-box").expect("legend marked");
+        assert!(!style::overlap(data, legend), "{data:?} {legend:?}");
+        assert!(legend[1] >= PICTURE.chart_height as f64, "{legend:?}");
         // Inside the picture: its height covers the legend.
         let height: f64 = svg
             .split("height=\"")

@@ -26,7 +26,7 @@ pub const PALETTE: [RGBColor; 10] = [
 /// Fits, fronts and other guides: black.
 pub const GUIDE: RGBColor = RGBColor(0, 0, 0);
 
-/// The quantities the report plots by name (history columns as [`crate::plot::column_axis`]
+/// The quantities the report plots by name (history columns as [`crate::line_plot::column_axis`]
 /// names them), each with its own palette slot so that no two of them share a colour.
 const FIXED: [(&str, usize); 9] = [
     ("impactor kinetic", 0),
@@ -92,6 +92,21 @@ pub struct Entry {
     pub label: String,
     pub colour: RGBColor,
     pub mark: Mark,
+}
+
+/// The legend entries of the curves of one plot (label, mark), each in its colour by name
+/// ([`colours`]).
+pub fn entries(curves: &[(&str, Mark)]) -> Vec<Entry> {
+    let names: Vec<&str> = curves.iter().map(|c| c.0).collect();
+    curves
+        .iter()
+        .zip(colours(&names))
+        .map(|(&(label, mark), colour)| Entry {
+            label: label.to_string(),
+            colour,
+            mark,
+        })
+        .collect()
 }
 
 /// Legend text size, row height, the width of a character at that size (an upper estimate
