@@ -19,7 +19,8 @@ use plotters::prelude::*;
 
 use impact_analytical::plane_wave::PlaneWave;
 
-use impact_verification::plot_style::{self, Entry, Mark};
+use impact_plots::picture::{Area, DataArea, Picture};
+use impact_plots::style::{self, Entry, Mark};
 
 use crate::common::{markdown_table, paper, pulse, timed, write_csv, Timing};
 use crate::pareto;
@@ -405,27 +406,21 @@ enum Axis {
     WaveSpeed,
 }
 
-/// The plot's chart size in pixels; the legend's strip goes below it.
-const WIDTH: u32 = 760;
-const CHART_HEIGHT: u32 = 520;
-const MARGIN: u32 = 12;
+/// The picture's sizes: the chart 760 x 520 pixels, the legend's strip below it.
+const PICTURE: Picture = Picture {
+    width: 760,
+    chart_height: 520,
+    margin: 12,
+};
 
 /// The legend entries: each configuration in its colour by name (the report's palette,
 /// readable on white), then the Pareto front in black.
 fn legend_entries(series: &[Series]) -> Vec<Entry> {
-    let names: Vec<&str> = series.iter().map(|s| s.0.as_str()).collect();
-    let mut entries: Vec<Entry> = series
-        .iter()
-        .zip(plot_style::colours(&names))
-        .map(|(s, colour)| Entry {
-            label: s.0.clone(),
-            colour,
-            mark: Mark::Line,
-        })
-        .collect();
+    let curves: Vec<(&str, Mark)> = series.iter().map(|s| (s.0.as_str(), Mark::Line)).collect();
+    let mut entries = style::entries(&curves);
     entries.push(Entry {
         label: "Pareto front (no other is faster and more accurate)".into(),
-        colour: plot_style::GUIDE,
+        colour: style::GUIDE,
         mark: Mark::Line,
     });
     entries
@@ -434,6 +429,19 @@ fn legend_entries(series: &[Series]) -> Vec<Entry> {
 /// The work-precision plot as SVG: log error against log wall time, each configuration's
 /// curve, the Pareto front, the legend in a strip below the chart (never over the data).
 fn plot_svg(title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<String> {
+    let entries = legend_entries(series);
+    PICTURE.svg(&entries, |area| chart(area, title, axis, series, &entries))
+}
+
+/// The chart of [`plot_svg`]: its log axes, the curves in their entries' colours, the
+/// Pareto front; its data area.
+fn chart(
+    area: &Area,
+    title: &str,
+    axis: Axis,
+    series: &[Series],
+    entries: &[Entry],
+) -> anyhow::Result<DataArea> {
     let all = series.iter().flat_map(|s| s.1.iter());
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for &(x, y) in all {
@@ -442,68 +450,47 @@ fn plot_svg(title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<String
         y0 = y0.min(y);
         y1 = y1.max(y);
     }
-    let entries = legend_entries(series);
-    let labels: Vec<&str> = entries.iter().map(|e| e.label.as_str()).collect();
-    let legend_width = WIDTH - 2 * MARGIN;
-    let legend_height = plot_style::layout(&labels, legend_width).1;
-    let mut text = String::new();
-    let area;
-    {
-        let root =
-            SVGBackend::with_string(&mut text, (WIDTH, CHART_HEIGHT + legend_height + MARGIN))
-                .into_drawing_area();
-        root.fill(&WHITE)?;
-        let (chart_area, _) = root.split_vertically(CHART_HEIGHT);
-        let xlabel = match axis {
-            Axis::History => "error: RMS of mid-span displacement history / its peak",
-            Axis::Robust => {
-                "error: max relative error of impulse, final velocity, max displacement"
-            }
-            Axis::WaveSpeed => "error: |measured P-wave speed / closed form - 1|",
-        };
-        let mut chart = ChartBuilder::on(&chart_area)
-            .caption(format!("work-precision: {title}"), ("sans-serif", 18))
-            .margin(MARGIN)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(
-                (x0 / 1.5..x1 * 1.5)
-                    .log_scale()
-                    .with_key_points(log_ticks(x0 / 1.5, x1 * 1.5)),
-                (y0 / 1.5..y1 * 1.5)
-                    .log_scale()
-                    .with_key_points(log_ticks(y0 / 1.5, y1 * 1.5)),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc(xlabel)
-            .y_desc("wall time, s (min of the timed runs)")
-            .x_label_formatter(&|v| tick_label(*v))
-            .y_label_formatter(&|v| tick_label(*v))
-            .draw()?;
-        for ((_, points), entry) in series.iter().zip(&entries) {
-            let color = entry.colour.to_rgba();
-            chart.draw_series(LineSeries::new(
-                points.iter().copied(),
-                color.stroke_width(2),
-            ))?;
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
-        }
-        // The Pareto front over all configurations: fastest to most accurate.
-        let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
-        let front: Vec<(f64, f64)> = pareto::front(&points)
-            .into_iter()
-            .map(|i| points[i])
-            .collect();
-        chart.draw_series(LineSeries::new(front, BLACK.stroke_width(1)))?;
-        area = chart.plotting_area().get_pixel_range();
-        root.present()?;
+    let xlabel = match axis {
+        Axis::History => "error: RMS of mid-span displacement history / its peak",
+        Axis::Robust => "error: max relative error of impulse, final velocity, max displacement",
+        Axis::WaveSpeed => "error: |measured P-wave speed / closed form - 1|",
+    };
+    let mut chart = ChartBuilder::on(area)
+        .caption(format!("work-precision: {title}"), ("sans-serif", 18))
+        .margin(PICTURE.margin)
+        .x_label_area_size(40)
+        .y_label_area_size(60)
+        .build_cartesian_2d(
+            (x0 / 1.5..x1 * 1.5)
+                .log_scale()
+                .with_key_points(log_ticks(x0 / 1.5, x1 * 1.5)),
+            (y0 / 1.5..y1 * 1.5)
+                .log_scale()
+                .with_key_points(log_ticks(y0 / 1.5, y1 * 1.5)),
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc(xlabel)
+        .y_desc("wall time, s (min of the timed runs)")
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| tick_label(*v))
+        .draw()?;
+    for ((_, points), entry) in series.iter().zip(entries) {
+        let color = entry.colour.to_rgba();
+        chart.draw_series(LineSeries::new(
+            points.iter().copied(),
+            color.stroke_width(2),
+        ))?;
+        chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
     }
-    let legend = plot_style::legend_svg(&entries, MARGIN, CHART_HEIGHT, legend_width);
-    Ok(plot_style::append(
-        &text,
-        &(plot_style::data_area(area.0, area.1) + &legend),
-    ))
+    // The Pareto front over all configurations: fastest to most accurate.
+    let points: Vec<(f64, f64)> = series.iter().flat_map(|s| s.1.iter().copied()).collect();
+    let front: Vec<(f64, f64)> = pareto::front(&points)
+        .into_iter()
+        .map(|i| points[i])
+        .collect();
+    chart.draw_series(LineSeries::new(front, BLACK.stroke_width(1)))?;
+    Ok(chart.plotting_area().get_pixel_range())
 }
 
 fn plot(path: &Path, title: &str, axis: Axis, series: &[Series]) -> anyhow::Result<()> {
@@ -541,7 +528,7 @@ fn tick_label(v: f64) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{log_ticks, plot_style, plot_svg, tick_label, Axis, Series};
+    use super::{log_ticks, plot_svg, style, tick_label, Axis, Series};
 
     /// The legend sits in its strip below the chart: the old one, plotters' own in the upper
     /// right, covered a third of the data area of a quick run's plot.
@@ -563,9 +550,9 @@ mod tests {
         })
         .collect();
         let svg = plot_svg("impact elastic", Axis::Robust, &series).unwrap();
-        let data = plot_style::marked_rect(&svg, "data-area").unwrap();
-        let legend = plot_style::marked_rect(&svg, "legend-box").unwrap();
-        assert!(!plot_style::overlap(data, legend), "{data:?} {legend:?}");
+        let data = style::marked_rect(&svg, "data-area").unwrap();
+        let legend = style::marked_rect(&svg, "legend-box").unwrap();
+        assert!(!style::overlap(data, legend), "{data:?} {legend:?}");
         assert!(svg.contains(">Pareto front (no other is faster and more accurate)</text>"));
     }
 

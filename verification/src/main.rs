@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use impact_solver::output::RunOptions;
 use impact_solver::progress::ProgressMode;
 use impact_verification::report::ReportOptions;
-use impact_verification::runner::{self, Options, Repo};
+use impact_verification::run::runner::{self, Options, Repo};
 
 /// Signals closer than this to the first one are taken as the same stop request, s.
 const REPEATED_SIGNAL_WINDOW: std::time::Duration = std::time::Duration::from_secs(1);
@@ -90,7 +90,7 @@ enum Command {
         /// Run only shard K of N (e.g. 2/4): a deterministic, cost-balanced share of the
         /// jobs; writes their results to <out>/shard.json for --merge.
         #[arg(long, value_name = "K/N", conflicts_with = "report")]
-        shard: Option<impact_verification::shard::Shard>,
+        shard: Option<impact_verification::run::shard::Shard>,
         /// Merge the shard folders (all N shards of one run) into the results a single run
         /// writes (results.json, junit.xml, matrix.txt, runs/, with --report the report).
         #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["shard", "selectors", "filter", "light"])]
@@ -189,7 +189,7 @@ fn main() -> ExitCode {
         }
         Command::Lint { root } => lint(root),
         Command::Diff { run_a, run_b, tol } => {
-            match impact_verification::diff::diff_runs(&run_a, &run_b, tol) {
+            match impact_verification::review::diff::diff_runs(&run_a, &run_b, tol) {
                 Ok(d) => {
                     print!("{}", d.text());
                     if d.n_beyond() > 0 {
@@ -247,8 +247,8 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
         Ok(r) => r,
         Err(c) => return c,
     };
-    let (cases, errors) = impact_verification::case::load_cases(&repo.cases_dir());
-    let findings = impact_verification::lint::lint(&repo, &cases);
+    let (cases, errors) = impact_verification::definition::case::load_cases(&repo.cases_dir());
+    let findings = impact_verification::definition::lint::lint(&repo, &cases);
     for e in &errors {
         eprintln!("error: {e}");
     }
@@ -269,10 +269,10 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
     }
 }
 
-/// The whole matrix, one shard of it, or the merge of shards (`impact_verification::shard`).
+/// The whole matrix, one shard of it, or the merge of shards (`impact_verification::run::shard`).
 enum Split {
     Whole,
-    Shard(impact_verification::shard::Shard),
+    Shard(impact_verification::run::shard::Shard),
     Merge(Vec<PathBuf>),
 }
 
@@ -306,15 +306,15 @@ fn verify(
     };
     let outcome = match split {
         Split::Whole => runner::verify(&repo, &opts),
-        Split::Merge(dirs) => impact_verification::shard::merge(&repo, &dirs, jobs),
+        Split::Merge(dirs) => impact_verification::run::shard::merge(&repo, &dirs, jobs),
         Split::Shard(shard) => {
-            return match impact_verification::shard::run_shard(&repo, &opts, shard, &out) {
+            return match impact_verification::run::shard::run_shard(&repo, &opts, shard, &out) {
                 Ok((mine, all)) => {
                     println!(
                         "shard {}/{}: ran {mine} of the {all} jobs; wrote {} ({:.1} s); merge with impact verify --merge DIR...",
                         shard.index,
                         shard.count,
-                        out.join(impact_verification::shard::SHARD_FILE).display(),
+                        out.join(impact_verification::run::shard::SHARD_FILE).display(),
                         started.elapsed().as_secs_f64()
                     );
                     ExitCode::SUCCESS
@@ -360,7 +360,7 @@ fn verify(
     );
     let _ = std::fs::remove_file(out.join("what-changed.md"));
     if let Some(dir) = baseline {
-        match impact_verification::baseline::apply(&dir, &out) {
+        match impact_verification::review::baseline::apply(&dir, &out) {
             Ok(changes) => println!("{}", changes.line()),
             Err(e) => {
                 eprintln!("error: --baseline {}: {e:#}", dir.display());

@@ -10,8 +10,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates' source folders, relative to the workspace root.
-const CRATES: [&str; 5] = [
+const CRATES: [&str; 6] = [
     "solver/src",
+    "plots/src",
     "verification/src",
     "benchmarks/src",
     "python/src",
@@ -323,16 +324,9 @@ fn the_report_names_no_suite() {
         .collect();
     suites.sort();
     assert!(suites.len() > 3, "{suites:?}");
-    // The files that render the report: report*.rs, markdown.rs, evidence_report.rs, templates/.
-    let src = root.join("verification/src");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&src)
-        .unwrap()
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            let name = p.file_name().unwrap().to_string_lossy();
-            name.starts_with("report") || name == "markdown.rs" || name == "evidence_report.rs"
-        })
-        .collect();
+    // The files that render the report: src/report/ and templates/.
+    let mut files = Vec::new();
+    rust_files(&root.join("verification/src/report"), &mut files);
     files.extend(
         std::fs::read_dir(root.join("verification/templates"))
             .unwrap()
@@ -340,7 +334,7 @@ fn the_report_names_no_suite() {
     );
     files.sort();
     assert!(
-        files.iter().any(|f| f.ends_with("report_paper.rs")),
+        files.iter().any(|f| f.ends_with("paper_tables.rs")),
         "{files:?}"
     );
     let mut found = Vec::new();

@@ -1,0 +1,15 @@
+//! What a case is, before anything runs: its declaration (`case.yaml`: requirement, scenes,
+//! series, checks) and the lint that every case must pass, the broken cases that fail them,
+//! the repository they live in; how a check is evaluated on the data a run gives back and
+//! what its result means (the verdict, the row every table shows), with the GCI rule of the
+//! convergence checks.
+
+pub mod broken;
+pub mod case;
+pub mod check;
+pub mod check_row;
+pub mod gci;
+pub mod lint;
+pub mod repo;
+pub mod run_data;
+pub mod verdict;

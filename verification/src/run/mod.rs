@@ -1,0 +1,14 @@
+//! Running the cases (`impact verify`): their jobs (scene runs and builtin computations,
+//! the code-verification builtins among them), the runner that plans, runs and judges them
+//! into the matrix and writes it out, its shards across machines, the matrix's own history
+//! invariants and the discriminating power of each case's wrong models.
+
+pub mod builtins;
+pub mod case_progress;
+pub mod code_verification;
+pub mod discriminate;
+pub mod history_invariants;
+pub mod jobs;
+pub mod rigid_plastic;
+pub mod runner;
+pub mod shard;
