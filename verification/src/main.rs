@@ -104,8 +104,8 @@ enum Command {
         root: Option<PathBuf>,
     },
     /// Compare two `simulate` output folders: every summary.json key, and per history.csv
-    /// column the largest absolute and relative difference on A's time grid; exits 1 when
-    /// anything differs by more than --tol.
+    /// column the largest absolute and relative difference on A's time grid and the ISO/TS
+    /// 18571 rating of B against A; exits 1 when anything differs by more than --tol.
     Diff {
         /// The first run's output folder (the reference, e.g. from the main branch).
         run_a: PathBuf,
@@ -114,7 +114,7 @@ enum Command {
         /// Largest relative difference accepted: |A - B| over max(|A|, |B|) for a summary
         /// number, over the column's peak |A| for a history column (default 0: bit-identical,
         /// as runs are deterministic).
-        #[arg(long, default_value_t = 0.0)]
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
         tol: f64,
     },
     /// Write the V&V report (index.html, report.md) from a verify output folder.
@@ -292,6 +292,15 @@ fn verify(
         Ok(r) => r,
         Err(c) => return c,
     };
+    // Every input is checked before the first run: a baseline that is missing or malformed
+    // is refused now, not after the whole matrix, and as `impact report --from` refuses it.
+    if let Some(dir) = &baseline {
+        let results = dir.join("results.json");
+        if let Err(e) = impact_verification::report::results::read(&results) {
+            eprintln!("error: --baseline {}: {e:#}", dir.display());
+            return ExitCode::from(2);
+        }
+    }
     let started = std::time::Instant::now();
     let jobs = jobs.map_or_else(
         || std::thread::available_parallelism().map_or(1, |n| n.get()),

@@ -109,5 +109,50 @@ fn a_changed_scene_is_reported_check_by_check_against_the_baseline() {
         page.contains("(contact_force_N)") || page.contains("_J)"),
         "{page}"
     );
+    // Each overlay is written once, beside the page that links it (the old report copied
+    // them again into what-changed/what-changed/).
+    let plots = std::fs::read_dir(branch.join("what-changed"))
+        .unwrap()
+        .count();
+    assert!(plots > 0);
+    assert!(!branch.join("what-changed/what-changed").exists());
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// A baseline that does not exist, or whose results.json is not the matrix's, is refused
+/// before the first run (exit 2, nothing written), naming the file and the key, as
+/// `impact report --from` refuses it. The old command ran the whole matrix first, and took
+/// `{"cases": 3}` ("25 changed status", exit 0).
+#[test]
+fn a_missing_or_malformed_baseline_is_refused_before_anything_runs() {
+    let root = Path::new(env!("CARGO_TARGET_TMPDIR")).join("baseline-refused");
+    let _ = std::fs::remove_dir_all(&root);
+    let bad = root.join("bad");
+    std::fs::create_dir_all(&bad).unwrap();
+    std::fs::write(bad.join("results.json"), "{\"cases\": 3}").unwrap();
+    for (baseline, said) in [
+        (
+            root.join("nonexistent"),
+            "results.json: run `impact verify --out DIR` first",
+        ),
+        (bad.clone(), "cases: expected an array, found a number"),
+    ] {
+        let out = root.join("out");
+        let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+            .args(["verify", "no-such-suite", "--baseline"])
+            .arg(&baseline)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("--baseline") && err.contains(said), "{err}");
+        assert!(
+            !err.contains("no case matches"),
+            "refused before the cases: {err}"
+        );
+        assert!(!out.exists(), "nothing written");
+    }
     let _ = std::fs::remove_dir_all(&root);
 }

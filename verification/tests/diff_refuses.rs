@@ -143,3 +143,57 @@ fn runs_without_a_common_time_window_are_refused() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A negative `--tol` reaches the validator's message (as `--tol NaN` does), not the argument
+/// parser's "unexpected argument '-1'" of the old command.
+#[test]
+fn a_negative_tolerance_is_refused_by_its_own_message() {
+    let d = dir("negative-tol");
+    let a = run(&d, "a", SUMMARY, &rows(&[0.0, 1e-6, 2e-6]));
+    for tol in ["-1", "NaN"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_impact"))
+            .arg("diff")
+            .args([&a, &a])
+            .args(["--tol", tol])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(&format!("--tol = {tol}: must be a finite number >= 0")),
+            "{err}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Each history column carries the ISO/TS 18571 rating of B against A
+/// (`impact_verification::review::iso18571`): 1.000 excellent for a column equal in both (a
+/// constant one too, whose slopes are zero on both sides), lower for one scaled by 1.3.
+#[test]
+fn each_column_is_rated_by_iso_18571() {
+    let d = dir("iso");
+    let times: Vec<f64> = (0..200).map(|k| k as f64 * 1e-7).collect();
+    let a = run(&d, "a", SUMMARY, &rows(&times));
+    let scaled: Vec<String> = times
+        .iter()
+        .map(|t| format!("{t:e},{:e},{:e},1e-12", 1.3e9 * t, -10.0 * t))
+        .collect();
+    let b = run(&d, "b", SUMMARY, &scaled);
+    let (_, text, _) = diff(&a, &b);
+    let line = |name: &str| {
+        text.lines()
+            .find(|l| l.starts_with(name))
+            .unwrap_or_else(|| panic!("{name} not in:\n{text}"))
+            .to_string()
+    };
+    assert!(line("mid_uy_m").contains("1.000 excellent"), "{text}");
+    let force = line("contact_force_N");
+    assert!(
+        !force.contains("excellent") && !force.contains(" - "),
+        "{text}"
+    );
+    let balance = line("energy_balance_error");
+    assert!(balance.contains("1.000 excellent"), "{text}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -21,7 +21,9 @@ pub fn context(from: &Path, out: &Path) -> Value {
             top_level: 3,
             anchor_prefix: "changed-",
             out,
-            copy_to: "what-changed",
+            // The page's plots are `what-changed/X.svg` already: copied under a folder of
+            // that name, each was written twice (`what-changed/what-changed/X.svg`).
+            copy_to: "",
             section_title: None,
         },
     );

@@ -19,7 +19,8 @@ pub struct Embed<'a> {
     pub anchor_prefix: &'a str,
     /// The report folder (where index.html and report.md are written).
     pub out: &'a Path,
-    /// Subfolder of `out` the linked local files are copied to.
+    /// Subfolder of `out` the linked local files are copied to (empty: to the paths the
+    /// page gives, under `out`).
     pub copy_to: &'a str,
     /// The title of the report's section holding the page: a page whose first block is a
     /// title heading with the same words (its only heading at that level) loses it, and its
@@ -216,6 +217,16 @@ fn page_headings(text: &str) -> Vec<Heading> {
     v
 }
 
+/// `rel` under the folder `copy_to` (itself when `copy_to` is empty: the page's own paths
+/// are already the report's, as `what-changed/X.svg` is beside `what-changed.md`).
+fn under(copy_to: &str, rel: &str) -> String {
+    if copy_to.is_empty() {
+        rel.to_string()
+    } else {
+        format!("{copy_to}/{rel}")
+    }
+}
+
 /// A local file the page links to (`path`, `rel` to the page), copied next to the report
 /// once: its path there, or None (noted as missing) when it does not exist.
 fn copy_local(how: &Embed, path: &Path, rel: &str, out: &mut Embedded) -> Option<String> {
@@ -225,7 +236,7 @@ fn copy_local(how: &Embed, path: &Path, rel: &str, out: &mut Embedded) -> Option
         }
         return None;
     }
-    let target_rel = format!("{}/{rel}", how.copy_to);
+    let target_rel = under(how.copy_to, rel);
     if !out.copied.contains(&target_rel) {
         let target = how.out.join(&target_rel);
         let same = match (path.canonicalize(), target.canonicalize()) {
@@ -612,7 +623,7 @@ impl<'e> HtmlPage<'e, '_> {
                 self.with_id.push(rel);
             } else {
                 self.html
-                    .push(link(format!("{}/{rel}{frag}", self.how.copy_to)));
+                    .push(link(format!("{}{frag}", under(self.how.copy_to, &rel))));
             }
         } else {
             self.html.push(events[i].clone());

@@ -6,7 +6,8 @@
 //! wall-clock keys are shown but never compared (they differ on every run). What cannot be
 //! compared is refused ([`crate::review::diff_input`]: NaN, a time that does not increase, a summary
 //! that is no object) and so are two runs without a common time window; the closing summary
-//! lists the moves physical first ([`crate::review::diff_moves`]).
+//! lists the moves physical first ([`crate::review::diff_moves`]). Each column also carries
+//! the field's rating of B against A, ISO/TS 18571 ([`rating_of`]), beside the max-norm error.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -18,6 +19,7 @@ use crate::definition::check::interpolate;
 pub use crate::review::diff_input::history_columns;
 use crate::review::diff_input::{check_comparable, read_summary};
 use crate::review::diff_moves::Move;
+use crate::review::iso18571::{Grade, Rating};
 
 /// Summary keys that measure the machine, not the result: shown, never compared.
 use impact_solver::summary::is_timing_key;
@@ -73,6 +75,9 @@ pub struct ColumnDiff {
     /// `max_abs` over the column's peak |a| (0 when both are 0).
     pub rel: f64,
     pub verdict: Verdict,
+    /// B rated against A by ISO/TS 18571 on the common window ([`rating_of`]); None where
+    /// the standard cannot rate them (A zero throughout, fewer than 9 rows, one run only).
+    pub iso: Option<Rating>,
 }
 
 /// The comparison of two runs.
@@ -139,17 +144,21 @@ impl RunDiff {
         );
         let _ = writeln!(
             s,
-            "{:w$}  {:>10}  {:>12}  {:>10}  verdict",
-            "column", "max |A - B|", "at time_s", "rel. peak"
+            "{:w$}  {:>10}  {:>12}  {:>10}  {:>15}  verdict",
+            "column", "max |A - B|", "at time_s", "rel. peak", "ISO 18571"
         );
         for c in &self.columns {
+            let iso = c.iso.map_or("-".to_string(), |r| {
+                format!("{:.3} {}", r.overall, Grade::of(r.overall).name())
+            });
             let _ = writeln!(
                 s,
-                "{:w$}  {:>11.3e}  {:>12.6e}  {:>10.3e}  {}",
+                "{:w$}  {:>11.3e}  {:>12.6e}  {:>10.3e}  {:>15}  {}",
                 c.column,
                 c.max_abs,
                 c.at_time,
                 c.rel,
+                iso,
                 c.verdict.label()
             );
         }
@@ -368,6 +377,7 @@ fn missing(name: &str) -> ColumnDiff {
         at_time: f64::NAN,
         rel: f64::INFINITY,
         verdict: Verdict::Beyond,
+        iso: None,
     }
 }
 
@@ -381,13 +391,16 @@ fn column_diff(
     tol: f64,
 ) -> ColumnDiff {
     let same_grid = ta == tb;
-    let (mut max_abs, mut at_time, mut peak) = (0.0_f64, f64::NAN, 0.0_f64);
-    for &i in grid {
-        let y = if same_grid {
+    let b_at = |t: f64, i: usize| {
+        if same_grid {
             vb[i]
         } else {
-            interpolate(tb, vb, ta[i])
-        };
+            interpolate(tb, vb, t)
+        }
+    };
+    let (mut max_abs, mut at_time, mut peak) = (0.0_f64, f64::NAN, 0.0_f64);
+    for &i in grid {
+        let y = b_at(ta[i], i);
         let d = (va[i] - y).abs();
         peak = peak.max(va[i].abs());
         if d > max_abs || at_time.is_nan() {
@@ -409,7 +422,28 @@ fn column_diff(
         at_time,
         rel,
         verdict,
+        iso: rating_of(ta, va, tb, vb, grid),
     }
+}
+
+/// B's column rated against A's by ISO/TS 18571 ([`crate::review::iso18571`]): both
+/// interpolated linearly onto as many equally spaced times as A has rows in the common
+/// window, from its first to its last. The standard samples a crash pulse of ~150 ms at
+/// 10 kHz; an impact history lasts microseconds to milliseconds and is written at the run's
+/// output step, and the rating depends on the sampling only through the number of samples,
+/// so A's own row count is the sampling kept. None where the standard cannot rate the pair.
+pub fn rating_of(ta: &[f64], va: &[f64], tb: &[f64], vb: &[f64], grid: &[usize]) -> Option<Rating> {
+    let (&first, &last) = (grid.first()?, grid.last()?);
+    let n = grid.len();
+    if n < crate::review::iso18571::MIN_SAMPLES {
+        return None;
+    }
+    let (t0, t1) = (ta[first], ta[last]);
+    let dt = (t1 - t0) / (n - 1) as f64;
+    let times: Vec<f64> = (0..n).map(|k| t0 + dt * k as f64).collect();
+    let a: Vec<f64> = times.iter().map(|&t| interpolate(ta, va, t)).collect();
+    let b: Vec<f64> = times.iter().map(|&t| interpolate(tb, vb, t)).collect();
+    crate::review::iso18571::rate(&a, &b, dt).ok()
 }
 
 #[cfg(test)]

@@ -99,10 +99,15 @@ pub fn listing(moves: &[Move]) -> String {
 }
 
 /// The closing line's last part: the largest physical move, else the largest bookkeeping one
-/// (said to be so), else that nothing moved.
+/// (said to be so), else that nothing moved. A key or column in one run only, or a changed
+/// text, has no size (its `rel` is infinite): it never heads the line as "inf", it is counted
+/// after the largest sized move.
 pub fn headline(moves: &[Move]) -> String {
-    match moves.first() {
-        None => "all compared values bit-identical".to_string(),
+    let sized: Vec<&Move> = moves.iter().filter(|m| m.rel.is_finite()).collect();
+    let unsized_count = moves.len() - sized.len();
+    let largest = match sized.first() {
+        None if unsized_count == 0 => return "all compared values bit-identical".to_string(),
+        None => "no value moved by a measurable amount".to_string(),
         Some(m) if !m.bookkeeping => {
             format!("largest relative change {:.3e} in {}", m.rel, m.name)
         }
@@ -110,5 +115,48 @@ pub fn headline(moves: &[Move]) -> String {
             "no physical quantity moved; largest relative change {:.3e} in {} (bookkeeping)",
             m.rel, m.name
         ),
+    };
+    match unsized_count {
+        0 => largest,
+        n => format!(
+            "{largest}; {n} without a size (in one run only, or a changed text: see the tables)"
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The old line read "largest relative change inf in X" for a key in one run only.
+    #[test]
+    fn a_key_in_one_run_only_never_heads_the_line() {
+        let moves = sorted(vec![
+            Move::new(
+                "wall.final_length_m",
+                f64::INFINITY,
+                "BEYOND",
+                "- -> 0.02".into(),
+            ),
+            Move::new(
+                "peak_contact_force_N",
+                2.0e-3,
+                "BEYOND",
+                "1 -> 1.002".into(),
+            ),
+        ]);
+        assert_eq!(
+            headline(&moves),
+            "largest relative change 2.000e-3 in peak_contact_force_N; 1 without a size \
+             (in one run only, or a changed text: see the tables)"
+        );
+        let only_unsized = sorted(vec![Move::new(
+            "title",
+            f64::INFINITY,
+            "BEYOND",
+            "a -> b".into(),
+        )]);
+        assert!(headline(&only_unsized).starts_with("no value moved by a measurable amount; 1"));
+        assert_eq!(headline(&[]), "all compared values bit-identical");
     }
 }
