@@ -5,10 +5,15 @@
 
 pub mod builtins;
 pub mod case_progress;
+pub mod case_rows;
 pub mod code_verification;
 pub mod discriminate;
 pub mod history_invariants;
+pub mod job_loop;
 pub mod jobs;
+pub mod matrix;
+pub mod matrix_files;
+pub mod plan;
 pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
