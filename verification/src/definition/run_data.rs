@@ -23,6 +23,15 @@ pub struct RunData {
 }
 
 impl RunData {
+    /// A builtin's result: its metrics and its one history (the case's plots read it as "").
+    pub fn with_history(metrics: BTreeMap<String, f64>, history: History) -> RunData {
+        RunData {
+            metrics,
+            histories: BTreeMap::from([(String::new(), history)]),
+            ..Default::default()
+        }
+    }
+
     pub fn history(&self) -> Option<&History> {
         self.histories.get("")
     }

@@ -3,6 +3,7 @@
 //! into the matrix and writes it out, its shards across machines, the matrix's own history
 //! invariants and the discriminating power of each case's wrong models.
 
+pub mod builtin_params;
 pub mod builtins;
 pub mod case_progress;
 pub mod case_rows;
