@@ -1,5 +1,6 @@
 //! What a job produced, the neutral data the builtins and scene jobs write and the checks
-//! read (here so that neither jobs nor builtins depends on the other for it).
+//! read: here, beside the checks, so that neither jobs nor builtins depends on the other for
+//! it, and no check on the run.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;

@@ -37,7 +37,7 @@ pub fn execute(
 
 /// [`execute`], and with a `judge` each case's row is made as soon as its last run has
 /// finished, announced with its verdicts and returned (per case of the plan) for
-/// [`assemble_judged`].
+/// [`assemble_judged`](crate::run::case_rows::assemble_judged).
 pub(super) fn run_jobs(
     plan: &Plan,
     which: &[usize],
