@@ -1,7 +1,7 @@
 """The declared input distributions of an uncertainty study, mapped from the unit interval.
 
 A study's declaration is read and validated by the native module (``file:line:col`` messages,
-``verification/src/uq_distribution.rs``); here each validated input becomes a percent-point
+``verification/src/uq/distribution.rs``); here each validated input becomes a percent-point
 function ``u -> x`` (``u`` in (0, 1)), so that a design in the unit hypercube (scrambled Sobol'
 or Latin hypercube) becomes samples of the inputs:
 

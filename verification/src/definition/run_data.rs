@@ -1,5 +1,6 @@
 //! What a job produced, the neutral data the builtins and scene jobs write and the checks
-//! read (here so that neither jobs nor builtins depends on the other for it).
+//! read: here, beside the checks, so that neither jobs nor builtins depends on the other for
+//! it, and no check on the run.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
@@ -23,6 +24,15 @@ pub struct RunData {
 }
 
 impl RunData {
+    /// A builtin's result: its metrics and its one history (the case's plots read it as "").
+    pub fn with_history(metrics: BTreeMap<String, f64>, history: History) -> RunData {
+        RunData {
+            metrics,
+            histories: BTreeMap::from([(String::new(), history)]),
+            ..Default::default()
+        }
+    }
+
     pub fn history(&self) -> Option<&History> {
         self.histories.get("")
     }

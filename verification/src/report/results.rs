@@ -11,7 +11,7 @@ use serde_json::Value;
 use crate::definition::check::CheckResult;
 use crate::definition::verdict::Tally;
 use crate::review::diff_input::json_kind;
-use crate::run::runner::Counts;
+use crate::run::matrix::Counts;
 
 /// results.json read, checked, and its counts recounted from the rows.
 pub fn read(path: &Path) -> Result<(Value, Counts)> {

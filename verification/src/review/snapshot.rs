@@ -9,7 +9,7 @@ use std::fmt::Write;
 
 use crate::definition::check::interpolate;
 use crate::definition::run_data::JobResult;
-use crate::run::runner::CaseResult;
+use crate::run::matrix::CaseResult;
 
 /// Below this magnitude a metric is round-off (relative errors and residuals of exact
 /// properties, code-to-code differences ~1e-11): printed as 0. No physical metric of these

@@ -158,7 +158,7 @@ pub const REQUIREMENT: (&str, &str) = (
     "REQ-INV-HISTORY-SUMMARY",
     "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run.",
 );
-pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks.";
+pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks.";
 
 /// The case's checks from the matrix's impact runs (`(suite/case/scene, run)`, each run
 /// once), kept when `suite/case/check` contains `filter`.

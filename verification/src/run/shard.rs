@@ -16,8 +16,12 @@ use impact_solver::History;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use crate::definition::repo::Repo;
 use crate::definition::run_data::{JobResult, RunData};
-use crate::run::runner::{self, Options, Outcome, Repo};
+use crate::run::case_rows::assemble;
+use crate::run::job_loop::execute;
+use crate::run::matrix::Outcome;
+use crate::run::plan::{load, plan, Options};
 
 /// File a shard writes into its output folder.
 pub const SHARD_FILE: &str = "shard.json";
@@ -171,11 +175,11 @@ pub fn run_shard(
     shard: Shard,
     out: &Path,
 ) -> Result<(usize, usize), Vec<String>> {
-    let loaded = runner::load(repo)?;
-    let plan = runner::plan(&loaded, opts)?;
+    let loaded = load(repo)?;
+    let plan = plan(&loaded, opts)?;
     let costs: Vec<f64> = plan.jobs.iter().map(|j| j.cost()).collect();
     let mine = share(&costs, shard);
-    let results = runner::execute(&plan, &mine, opts.jobs, opts.progress).map_err(|e| vec![e])?;
+    let results = execute(&plan, &mine, opts.jobs, opts.progress).map_err(|e| vec![e])?;
     let file = ShardFile {
         format: FORMAT,
         shard: shard.index,
@@ -291,8 +295,8 @@ pub fn merge(repo: &Repo, dirs: &[PathBuf], jobs: usize) -> Result<Outcome, Vec<
             by_key.insert(job.key, result);
         }
     }
-    let loaded = runner::load(repo)?;
-    let plan = runner::plan(&loaded, &opts)?;
+    let loaded = load(repo)?;
+    let plan = plan(&loaded, &opts)?;
     let covered =
         by_key.len() == plan.jobs.len() && plan.jobs.iter().all(|j| by_key.contains_key(&j.key()));
     if !covered {
@@ -303,5 +307,5 @@ pub fn merge(repo: &Repo, dirs: &[PathBuf], jobs: usize) -> Result<Outcome, Vec<
         )]);
     }
     let slots = plan.jobs.iter().map(|j| by_key.remove(&j.key())).collect();
-    Ok(runner::assemble(repo, &plan, slots, &opts.filter))
+    Ok(assemble(repo, &plan, slots, &opts.filter))
 }

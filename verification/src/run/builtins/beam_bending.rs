@@ -13,22 +13,22 @@ use impact_solver::scene::{MeshSettings, Model, Plate};
 use impact_solver::with_formulation;
 
 use super::patch::formulation;
-use super::{element_kind, p_f64, p_str, Params};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{element_kind, param, param_str, Params};
 
 /// Static clamped-clamped beam (half model: clamp at x = 0, symmetry at mid-span) with a
 /// total load F at mid-span shared over the mid-span nodes; against beam theory.
 pub(super) fn beam_bending(p: &Params) -> Result<RunData, String> {
-    let kind = element_kind(p_str(p, "element", "q4-sri")?)?;
-    let length = p_f64(p, "length", 0.8)?;
-    let thickness = p_f64(p, "thickness", 0.02)?;
-    let width = p_f64(p, "width", 0.2)?;
-    let nx = p_f64(p, "nx", 80.0)? as usize;
-    let ny = p_f64(p, "ny", 4.0)? as usize;
-    let force = p_f64(p, "force", 1.0e4)?;
+    let kind = element_kind(param_str(p, "element", "q4-sri")?)?;
+    let length = param(p, "length", 0.8)?;
+    let thickness = param(p, "thickness", 0.02)?;
+    let width = param(p, "width", 0.2)?;
+    let nx = param(p, "nx", 80.0)? as usize;
+    let ny = param(p, "ny", 4.0)? as usize;
+    let force = param(p, "force", 1.0e4)?;
     let (e_mod, nu) = (
-        p_f64(p, "youngs_modulus", 207e9)?,
-        p_f64(p, "poisson_ratio", 0.3)?,
+        param(p, "youngs_modulus", 207e9)?,
+        param(p, "poisson_ratio", 0.3)?,
     );
     let elastic = Elastic::new(e_mod, nu);
     // Mesh settings from a minimal scene, so that fields the solver adds keep their defaults.

@@ -8,8 +8,8 @@ use impact_analytical::hertz_line;
 use impact_solver::contact::{solve_contact_force, LineContactLaw};
 use impact_solver::scene::{ContactLawChoice, Impactor, Material, MidSpanNode};
 
-use super::Params;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::Params;
 
 const STEEL_E: f64 = 207e9;
 const STEEL_NU: f64 = 0.3;

@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 
 use impact_solver::impactor::RigidImpactor;
 
-use super::Params;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::Params;
 
 pub(super) fn impactor_kinematics(_: &Params) -> Result<RunData, String> {
     let mut m = BTreeMap::new();

@@ -4,12 +4,8 @@
 //! (and histories) for the checks to read. The code-verification builtins
 //! (`crate::run::code_verification`) are found through the same names.
 
-use std::collections::BTreeMap;
-
-use impact_solver::scene::ElementKind;
-use serde_json::Value;
-
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::Params;
 
 mod beam_bending;
 mod contact_law;
@@ -36,30 +32,6 @@ pub fn names() -> impl Iterator<Item = &'static str> + Clone {
         .iter()
         .map(|(n, _)| *n)
         .chain(crate::run::code_verification::NAMES)
-}
-
-pub(super) type Params = BTreeMap<String, Value>;
-
-pub(super) fn p_f64(p: &Params, k: &str, default: f64) -> Result<f64, String> {
-    match p.get(k) {
-        None => Ok(default),
-        Some(v) => v
-            .as_f64()
-            .ok_or_else(|| format!("param {k}: {v} is not a number")),
-    }
-}
-
-pub(super) fn p_str<'a>(p: &'a Params, k: &str, default: &'a str) -> Result<&'a str, String> {
-    match p.get(k) {
-        None => Ok(default),
-        Some(v) => v
-            .as_str()
-            .ok_or_else(|| format!("param {k}: {v} is not a string")),
-    }
-}
-
-pub(super) fn element_kind(name: &str) -> Result<ElementKind, String> {
-    name.parse().map_err(|e| format!("param element: {e}"))
 }
 
 /// Runs the builtin `name` with its parameters; its metrics and histories name it and them.

@@ -8,25 +8,25 @@ use impact_analytical::beam::ClampedBeam;
 use impact_analytical::modal_beam::ModalBeam;
 use impact_solver::History;
 
-use super::{p_f64, Params};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, Params};
 
 /// Euler-Bernoulli clamped-clamped beam (plane strain modulus) under a rectangular pulse at
 /// mid-span: modal superposition, mid-span deflection history (negative = down).
 pub(super) fn modal_beam(p: &Params) -> Result<RunData, String> {
-    let length = p_f64(p, "length", 0.8)?;
-    let thickness = p_f64(p, "thickness", 0.02)?;
-    let width = p_f64(p, "width", 0.2)?;
+    let length = param(p, "length", 0.8)?;
+    let thickness = param(p, "thickness", 0.02)?;
+    let width = param(p, "width", 0.2)?;
     let (e_mod, nu, rho) = (
-        p_f64(p, "youngs_modulus", 207e9)?,
-        p_f64(p, "poisson_ratio", 0.3)?,
-        p_f64(p, "density", 7850.0)?,
+        param(p, "youngs_modulus", 207e9)?,
+        param(p, "poisson_ratio", 0.3)?,
+        param(p, "density", 7850.0)?,
     );
-    let force = p_f64(p, "force", 86.5e3)?;
-    let duration = p_f64(p, "duration", 1e-3)?;
-    let end = p_f64(p, "end", 4e-3)?;
-    let every = p_f64(p, "every", 1e-6)?;
-    let n_modes = p_f64(p, "modes", 40.0)? as usize;
+    let force = param(p, "force", 86.5e3)?;
+    let duration = param(p, "duration", 1e-3)?;
+    let end = param(p, "end", 4e-3)?;
+    let every = param(p, "every", 1e-6)?;
+    let n_modes = param(p, "modes", 40.0)? as usize;
     let beam = ClampedBeam::new(length, width, thickness, e_mod, nu)?;
     let beam = ModalBeam::new(&beam, rho, n_modes)?;
     let rows = (end / every).round() as usize;

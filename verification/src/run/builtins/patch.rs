@@ -13,8 +13,8 @@ use impact_solver::model::AnyFormulation;
 use impact_solver::scene::{ElementKind, DEFAULT_HOURGLASS};
 use impact_solver::with_formulation;
 
-use super::{element_kind, p_str, Params};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{element_kind, param_str, Params};
 use crate::run::code_verification::driver::distorted_patch;
 
 pub(super) fn formulation(
@@ -55,7 +55,7 @@ fn assemble<F: Formulation>(
 }
 
 pub(super) fn patch(p: &Params) -> Result<RunData, String> {
-    let kind = element_kind(p_str(p, "element", "q4-sri")?)?;
+    let kind = element_kind(param_str(p, "element", "q4-sri")?)?;
     let (e_mod, nu, rho, width) = (207e9, 0.3, 7850.0, 0.2);
     let elastic = Elastic::new(e_mod, nu);
     let mesh = distorted_patch();

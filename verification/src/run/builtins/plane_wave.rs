@@ -6,16 +6,16 @@ use std::collections::BTreeMap;
 
 use impact_analytical::plane_wave::PlaneWave;
 
-use super::{element_kind, p_f64, p_str, Params};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{element_kind, param, param_str, Params};
 
 pub(super) fn plane_wave(p: &Params) -> Result<RunData, String> {
-    let element = element_kind(p_str(p, "element", "q4-sri")?)?;
+    let element = element_kind(param_str(p, "element", "q4-sri")?)?;
     let problem = PlaneWave::new(
-        p_str(p, "wave", "p")?,
-        p_f64(p, "ny", 80.0)? as usize,
+        param_str(p, "wave", "p")?,
+        param(p, "ny", 80.0)? as usize,
         element,
-        p_f64(p, "cfl", 0.5)?,
+        param(p, "cfl", 0.5)?,
     )?;
     let o = impact_solver::simulate(&problem.scene, &mut impact_solver::Quiet)
         .map_err(|e| e.to_string())?;

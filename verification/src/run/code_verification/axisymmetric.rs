@@ -37,8 +37,8 @@ use super::collapse::{march, plateau, Push};
 use super::driver::{distorted_patch, mapped_mesh};
 use super::space_time::element;
 use super::thick_cylinder::pressure_history;
-use super::{param, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -309,7 +309,7 @@ pub fn axisymmetric(p: &Params) -> Result<RunData, String> {
     m.insert("lame_order".into(), (errors[2] / errors[3]).log2());
     let (ratio, rows) = limit(kind, plane, nr)?;
     m.insert("limit_pressure_ratio".into(), ratio);
-    Ok(with_history(m, pressure_history(&rows)))
+    Ok(RunData::with_history(m, pressure_history(&rows)))
 }
 
 #[cfg(test)]

@@ -24,9 +24,10 @@ use std::collections::BTreeMap;
 use impact_solver::History;
 use serde_json::Value;
 
-use super::with_history;
-use super::{param, plastic_material, PlasticMaterial};
+use super::plastic_material::{plastic_material, PlasticMaterial};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -245,7 +246,7 @@ pub fn plastic_bar_wave(p: &Params) -> Result<RunData, String> {
         Some(v) => v.as_str().ok_or("param element: not a string")?,
     };
     let text = scene(&bar, model, ny, element);
-    let o = super::run_scene_text(
+    let o = run_scene_text(
         &text,
         "(builtin plastic-bar-wave)",
         &mut impact_solver::Quiet,
@@ -256,7 +257,7 @@ pub fn plastic_bar_wave(p: &Params) -> Result<RunData, String> {
         "max_energy_balance_error".into(),
         o.summary.max_energy_balance_error,
     );
-    Ok(with_history(metrics, o.history))
+    Ok(RunData::with_history(metrics, o.history))
 }
 
 #[cfg(test)]

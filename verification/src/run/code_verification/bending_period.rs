@@ -18,9 +18,8 @@ use impact_analytical::modal_beam::ModalBeam;
 use impact_analytical::timoshenko_modal::{Ends, TimoshenkoBeam};
 use serde_json::Value;
 
-use super::param;
-use super::with_history;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -141,7 +140,7 @@ pub fn bending_period(p: &Params) -> Result<RunData, String> {
     m.insert("euler_bernoulli_period_s".into(), eb_period);
     m.insert("ratio_to_timoshenko".into(), period / timo_period);
     m.insert("ratio_to_euler_bernoulli".into(), period / eb_period);
-    Ok(with_history(m, o.history))
+    Ok(RunData::with_history(m, o.history))
 }
 
 #[cfg(test)]

@@ -30,9 +30,10 @@ use impact_solver::scene::{Hardening, Material, Plasticity};
 use impact_solver::History;
 use serde_json::Value;
 
+use super::plastic_material::{plastic_material, PlasticMaterial};
 use super::space_time::element;
-use super::{param, plastic_material, PlasticMaterial};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 

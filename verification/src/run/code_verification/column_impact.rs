@@ -21,8 +21,9 @@ use std::collections::BTreeMap;
 
 use serde_json::Value;
 
-use super::{param, with_history};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -154,7 +155,7 @@ pub fn column_impact(p: &Params) -> Result<RunData, String> {
     let ny = param(p, "ny", 256.0)? as usize;
     let courant = param(p, "courant", 1.0)?;
     let text = scene(&col, model_modulus, ny, courant);
-    let o = super::run_scene_text(&text, "(builtin column-impact)", &mut impact_solver::Quiet)?;
+    let o = run_scene_text(&text, "(builtin column-impact)", &mut impact_solver::Quiet)?;
     let column = |name: &str| {
         o.history
             .column(name)
@@ -177,7 +178,7 @@ pub fn column_impact(p: &Params) -> Result<RunData, String> {
         s.max_energy_balance_error,
     );
     metrics.insert("contact_energy_J".into(), s.final_energy.contact);
-    Ok(with_history(metrics, o.history))
+    Ok(RunData::with_history(metrics, o.history))
 }
 
 #[cfg(test)]

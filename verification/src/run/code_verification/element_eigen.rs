@@ -16,8 +16,8 @@ use impact_solver::mesh::Mesh;
 use nalgebra::{SMatrix, SymmetricEigen};
 use serde_json::Value;
 
-use super::param;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Matrix8 = SMatrix<f64, 8, 8>;
 

@@ -56,9 +56,10 @@ use impact_solver::scene::{ElementKind, Hardening, Material, Plasticity};
 use serde_json::Value;
 
 use super::driver::mapped_mesh;
+use super::plastic_material::{plastic_material, PlasticMaterial};
 use super::space_time::element;
-use super::{param, param_geometry, plastic_material, with_history, PlasticMaterial};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_geometry};
 
 type Params = BTreeMap<String, Value>;
 
@@ -477,7 +478,7 @@ pub fn finite_strain_path(p: &Params) -> Result<RunData, String> {
     m.insert("spread".into(), spread / scale);
     m.insert("reference_scale_Pa".into(), scale);
     insert_path_metrics(&mut m, (path, axis), &fine);
-    Ok(with_history(m, history(path, &fine, &refs, e.mu)))
+    Ok(RunData::with_history(m, history(path, &fine, &refs, e.mu)))
 }
 
 /// How the block runs in the axisymmetric geometry: about the axis at `axis` (m).

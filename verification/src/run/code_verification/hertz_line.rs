@@ -23,8 +23,9 @@ use std::collections::BTreeMap;
 use impact_solver::integrator::{FieldFrame, Observer};
 use serde_json::Value;
 
-use super::{param, with_history};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -136,7 +137,7 @@ pub fn hertz_line(p: &Params) -> Result<RunData, String> {
     let size = param(p, "size", 0.04)?;
     let text = scene(n, size, model_modulus, nu);
     let mut peak = PeakFrame::default();
-    let o = super::run_scene_text(&text, "(builtin hertz-line)", &mut peak)?;
+    let o = run_scene_text(&text, "(builtin hertz-line)", &mut peak)?;
     let frame = peak
         .frame
         .ok_or("hertz-line: no field frame with contact")?;
@@ -147,7 +148,7 @@ pub fn hertz_line(p: &Params) -> Result<RunData, String> {
         "max_energy_balance_error".into(),
         o.summary.max_energy_balance_error,
     );
-    Ok(with_history(metrics, o.history))
+    Ok(RunData::with_history(metrics, o.history))
 }
 
 #[cfg(test)]

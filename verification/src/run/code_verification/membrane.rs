@@ -16,8 +16,8 @@ use impact_solver::scene::{End, Kinematics};
 use impact_solver::{Quiet, Scene};
 use serde_json::Value;
 
-use super::{param, param_numbers, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_numbers};
 use crate::run::rigid_plastic::beam_impact;
 
 type Params = BTreeMap<String, Value>;
@@ -100,5 +100,8 @@ pub fn membrane_regime(p: &Params) -> Result<RunData, String> {
     .map(String::from)
     .to_vec();
     let values = rows.iter().flatten().copied().collect();
-    Ok(with_history(m, impact_solver::History { columns, values }))
+    Ok(RunData::with_history(
+        m,
+        impact_solver::History { columns, values },
+    ))
 }

@@ -35,9 +35,10 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::orders::{largest_step, pair_orders};
+use super::plastic_material::plastic_material;
 use super::space_time::element;
-use super::{param, param_levels, plastic_material};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_levels};
 
 type Params = BTreeMap<String, Value>;
 

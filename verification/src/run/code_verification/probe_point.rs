@@ -23,8 +23,9 @@ use impact_solver::integrator::{FieldFrame, Observer};
 use impact_solver::material::Stress;
 use serde_json::Value;
 
-use super::{param, run_scene_text};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 /// The probes (m, x from the clamped end, y from the bottom): inside the elements of the
 /// 40 x 8 half mesh of the 200 x 20 mm plate (5 x 2.5 mm elements), off their points'

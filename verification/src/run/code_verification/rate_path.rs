@@ -32,8 +32,8 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::space_time::element;
-use super::{param, param_numbers, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_numbers};
 
 type Params = BTreeMap<String, Value>;
 
@@ -265,7 +265,10 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     let values = (0..=GRID)
         .flat_map(|j| per_rate.iter().map(move |col| col[j]))
         .collect();
-    Ok(with_history(m, impact_solver::History { columns, values }))
+    Ok(RunData::with_history(
+        m,
+        impact_solver::History { columns, values },
+    ))
 }
 
 /// Column `c` of `rows` at strain `e`, linear between the rows' `strains` (held at the ends).

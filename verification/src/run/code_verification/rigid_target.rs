@@ -17,8 +17,8 @@ use std::collections::BTreeMap;
 
 use serde_json::Value;
 
-use super::param;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 /// Indentation (m) as a function of the force per unit width (N/m).
 type Law = Box<dyn Fn(f64) -> f64>;

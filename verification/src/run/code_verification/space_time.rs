@@ -13,8 +13,8 @@ use serde_json::Value;
 use super::driver::{self, mapped_mesh, weighted_l2, Steps};
 use super::manufactured::Manufactured;
 use super::orders::{difference_orders, largest_step, pair_orders};
-use super::{param, param_levels};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_levels};
 
 type Params = BTreeMap<String, Value>;
 

@@ -12,8 +12,8 @@ use impact_solver::History;
 use serde_json::Value;
 
 use super::orders::{largest_step, pair_orders};
-use super::param;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 /// Largest displacement and velocity errors over one period with `n` steps, relative to the
 /// amplitudes `v0 / w` and `v0`.

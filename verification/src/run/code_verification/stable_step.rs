@@ -23,8 +23,8 @@ use std::collections::BTreeMap;
 
 use serde_json::Value;
 
-use super::param;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 /// The closed form and the wrong models, s: (`dt_closed_form_s`, the wrong models by name).
 fn steps(

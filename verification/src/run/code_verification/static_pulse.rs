@@ -11,9 +11,8 @@ use std::collections::BTreeMap;
 use serde_json::Value;
 
 use super::bending_period::{beam_periods, plate_scene};
-use super::param;
-use super::with_history;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -39,7 +38,7 @@ pub fn static_pulse(p: &Params) -> Result<RunData, String> {
             .ok_or_else(|| format!("static-pulse: no {column}"))?;
         m.insert(format!("mean_{column}"), hann_mean(&x));
     }
-    Ok(with_history(m, o.history))
+    Ok(RunData::with_history(m, o.history))
 }
 
 #[cfg(test)]

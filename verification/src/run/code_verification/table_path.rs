@@ -30,8 +30,8 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::space_time::element;
-use super::{param, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -242,7 +242,7 @@ pub fn table_strain_path(p: &Params) -> Result<RunData, String> {
         columns: columns.iter().map(|c| c.to_string()).collect(),
         values,
     };
-    Ok(with_history(m, history))
+    Ok(RunData::with_history(m, history))
 }
 
 #[cfg(test)]

@@ -26,8 +26,8 @@ use serde_json::Value;
 use super::collapse::{march, plateau, Push};
 use super::driver::mapped_mesh;
 use super::space_time::element;
-use super::{param, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -107,7 +107,7 @@ pub fn thick_cylinder(p: &Params) -> Result<RunData, String> {
     m.insert("limit_pressure_Pa".into(), pressure);
     m.insert("limit_pressure_closed_form_Pa".into(), limit);
     m.insert("ratio_to_closed_form".into(), pressure / limit);
-    Ok(with_history(m, pressure_history(&rows)))
+    Ok(RunData::with_history(m, pressure_history(&rows)))
 }
 
 /// The history of a cylinder's push: rows (time s, inner pressure Pa, inner displacement m).

@@ -19,8 +19,9 @@ use impact_solver::integrator::FieldFrame;
 use impact_solver::Observer;
 use serde_json::Value;
 
-use super::{param, run_scene_text};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 /// The elasto-plastic example at `nx` x `ny` (history every 1 us, one field frame at
 /// the end), 3 ms.

@@ -37,8 +37,8 @@ use serde_json::Value;
 
 use super::driver::mapped_mesh;
 use super::rate_path::perfectly_plastic;
-use super::{param, with_history};
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::param;
 
 type Params = BTreeMap<String, Value>;
 
@@ -281,7 +281,7 @@ pub fn viscoplastic_truss(p: &Params) -> Result<RunData, String> {
             .to_vec(),
         values: rows.iter().flatten().copied().collect(),
     };
-    Ok(with_history(m, history))
+    Ok(RunData::with_history(m, history))
 }
 
 #[cfg(test)]

@@ -21,8 +21,9 @@ use std::collections::BTreeMap;
 use impact_solver::input::geometry::Geometry;
 use serde_json::Value;
 
-use super::{param, param_geometry, with_history};
+use super::scene_text::run_scene_text;
 use crate::definition::run_data::RunData;
+use crate::run::builtin_params::{param, param_geometry};
 
 type Params = BTreeMap<String, Value>;
 
@@ -141,9 +142,9 @@ pub fn wall_bar(p: &Params) -> Result<RunData, String> {
     let model_e = param(p, "model_youngs_modulus", BAR.youngs_modulus)?;
     let force_factor = param(p, "force_factor", 1.0)?;
     let text = scene(&BAR, geometry.name(), ny, model_e);
-    let o = super::run_scene_text(&text, "(builtin wall-bar)", &mut impact_solver::Quiet)?;
+    let o = run_scene_text(&text, "(builtin wall-bar)", &mut impact_solver::Quiet)?;
     let metrics = measure(&o, &BAR, axisymmetric, force_factor)?;
-    Ok(with_history(metrics, o.history))
+    Ok(RunData::with_history(metrics, o.history))
 }
 
 #[cfg(test)]

@@ -1,0 +1,216 @@
+//! The matrix written out: its one-line total, the table of checks and the per-suite summary
+//! (matrix.txt, and the terminal), JUnit XML, results.json, and each run's history.csv and
+//! summary.json under runs/ for the report.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::definition::check::Status;
+use crate::definition::verdict::{Tally, Verdict};
+use crate::run::matrix::{Matrix, Outcome};
+
+/// The one-line total: `verify: 2 cases, 5 checks: 4 OK, 1 FAIL* (exit 0, 3.2 s)`.
+pub fn total_line(m: &Matrix, seconds: f64) -> String {
+    let t = m.tally();
+    let n_checks = t.ok + t.known_fail + t.fail + t.xpass + t.skip;
+    format!(
+        "verify: {} case{}, {n_checks} check{}: {} (exit {}, {seconds:.1} s)",
+        m.cases.len(),
+        if m.cases.len() == 1 { "" } else { "s" },
+        if n_checks == 1 { "" } else { "s" },
+        t.short(),
+        t.exit_status()
+    )
+}
+
+/// The matrix as text: one row per check.
+pub fn matrix_text(m: &Matrix) -> String {
+    let mut rows = vec![[
+        "suite".to_string(),
+        "case".into(),
+        "check".into(),
+        "status".into(),
+        "computed".into(),
+        "reference".into(),
+        "error (one-sided: margin)".into(),
+        "tolerance".into(),
+    ]];
+    for (c, k) in m.all_checks() {
+        let row = crate::definition::check_row::CheckRow::of(k);
+        rows.push([
+            c.suite.clone(),
+            c.case.clone(),
+            k.id.clone(),
+            row.verdict.label().to_string(),
+            row.computed,
+            row.reference,
+            row.error,
+            row.tolerance,
+        ]);
+    }
+    let mut widths = [0usize; 8];
+    for r in &rows {
+        for (w, s) in widths.iter_mut().zip(r) {
+            *w = (*w).max(s.chars().count());
+        }
+    }
+    let mut out = String::new();
+    for r in &rows {
+        let line: Vec<String> = r
+            .iter()
+            .zip(widths)
+            .map(|(s, w)| format!("{s:<w$}"))
+            .collect();
+        out.push_str(line.join("  ").trim_end());
+        out.push('\n');
+    }
+    out
+}
+
+/// Per-suite counts (known failures and unexpected passes apart), the total line, and the
+/// list of non-OK checks with their messages.
+pub fn summary_text(m: &Matrix) -> String {
+    let mut per: BTreeMap<&str, Tally> = BTreeMap::new();
+    for (c, k) in m.all_checks() {
+        per.entry(&c.suite).or_default().add(Verdict::of_check(k));
+    }
+    let row = |name: &str, t: &Tally| {
+        format!(
+            "{name:<20} {:>4} {:>6} {:>5} {:>6} {:>5}\n",
+            t.ok, t.known_fail, t.fail, t.xpass, t.skip
+        )
+    };
+    let mut out = String::from("\nsuite                 OK  FAIL*  FAIL  XPASS  SKIP\n");
+    for (s, t) in &per {
+        out.push_str(&row(s, t));
+    }
+    let total = m.tally();
+    out.push_str(&row("total", &total));
+    out.push_str(&format!(
+        "matrix: {} ({} unexpected: {})\n",
+        total.line(),
+        total.unexpected(),
+        if total.unexpected() == 0 {
+            "exit 0"
+        } else {
+            "exit 1"
+        }
+    ));
+    let notes: Vec<String> = m
+        .all_checks()
+        .filter(|(_, k)| Verdict::of_check(k) != Verdict::Ok)
+        .map(|(c, k)| {
+            let v = Verdict::of_check(k);
+            let known = k
+                .known_failure
+                .as_ref()
+                .map(|r| format!(" [known: {r}]"))
+                .unwrap_or_default();
+            let message = if v == Verdict::UnexpectedPass {
+                "passes, but is declared a known failure: remove the declaration or explain".into()
+            } else {
+                k.message.clone()
+            };
+            format!(
+                "  {} {}/{}/{}: {message}{known}",
+                v.label(),
+                c.suite,
+                c.case,
+                k.id
+            )
+        })
+        .collect();
+    if !notes.is_empty() {
+        out.push_str("\nnot OK:\n");
+        out.push_str(&notes.join("\n"));
+        out.push('\n');
+    }
+    out
+}
+
+/// JUnit XML: one test suite per case, one test case per check.
+pub fn junit_xml(m: &Matrix) -> Result<String, String> {
+    use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
+    let mut report = Report::new("impact-verify");
+    for c in &m.cases {
+        let mut suite = TestSuite::new(format!("{}/{}", c.suite, c.case));
+        for k in &c.checks {
+            let row = crate::definition::check_row::CheckRow::of(k);
+            let detail = format!(
+                "computed {} reference {} ({}) error {} tolerance {} ({})",
+                row.computed,
+                row.reference,
+                k.reference_kind,
+                row.error,
+                k.tolerance,
+                k.tolerance_reason
+            );
+            let status = match k.status {
+                Status::Ok if k.known_failure.is_some() => {
+                    let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                    s.set_message("XPASS: passes, but is declared a known failure");
+                    s.set_description(detail.clone());
+                    s
+                }
+                Status::Ok => TestCaseStatus::success(),
+                Status::Fail => {
+                    let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                    s.set_message(k.message.clone());
+                    s.set_description(detail.clone());
+                    s
+                }
+                Status::Skip => {
+                    let mut s = TestCaseStatus::skipped();
+                    s.set_message(k.message.clone());
+                    s
+                }
+            };
+            let mut tc = TestCase::new(k.id.clone(), status);
+            tc.set_classname(format!("{}.{}", c.suite, c.case));
+            tc.set_system_out(detail);
+            suite.add_test_case(tc);
+        }
+        report.add_test_suite(suite);
+    }
+    report.to_string().map_err(|e| e.to_string())
+}
+
+/// Writes results.json, junit.xml, matrix.txt and runs/<suite>/<case>/<scene>/ into `out`.
+pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(out)?;
+    let json = serde_json::to_string_pretty(&outcome.matrix).map_err(std::io::Error::other)?;
+    std::fs::write(out.join("results.json"), json + "\n")?;
+    std::fs::write(
+        out.join("junit.xml"),
+        junit_xml(&outcome.matrix).map_err(std::io::Error::other)?,
+    )?;
+    std::fs::write(
+        out.join("matrix.txt"),
+        matrix_text(&outcome.matrix) + &summary_text(&outcome.matrix),
+    )?;
+    let runs = out.join("runs");
+    if runs.exists() {
+        std::fs::remove_dir_all(&runs)?;
+    }
+    for ((suite, case), results) in &outcome.data {
+        for (scene, r) in results {
+            let Ok(d) = r else { continue };
+            let dir = runs.join(suite).join(case).join(scene);
+            std::fs::create_dir_all(&dir)?;
+            for (name, h) in &d.histories {
+                let file = if name.is_empty() {
+                    "history.csv".to_string()
+                } else {
+                    format!("{name}.csv")
+                };
+                impact_solver::output::write_history(h, &dir.join(file))
+                    .map_err(std::io::Error::other)?;
+            }
+            if let Some(s) = &d.summary {
+                let text = serde_json::to_string_pretty(s).map_err(std::io::Error::other)?;
+                std::fs::write(dir.join("summary.json"), text + "\n")?;
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,154 @@
+//! What a verify run will do: the repository's cases, loaded and linted (the broken ones
+//! apart, each to be a FAIL row), those that the [`Options`] select, and their jobs,
+//! deduplicated by content (a scene shared by several checks or cases runs once).
+
+use std::collections::BTreeMap;
+
+use crate::definition::broken::Broken;
+use crate::definition::case::Case;
+use crate::definition::repo::Repo;
+use crate::run::jobs::{self, Job};
+
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Suites, case ids or `suite/case` names; empty = all.
+    pub selectors: Vec<String>,
+    /// Substring of `suite/case/check`.
+    pub filter: Option<String>,
+    pub jobs: usize,
+    pub include_heavy: bool,
+    pub progress: bool,
+}
+
+fn selected(case: &Case, opts: &Options) -> bool {
+    if case.file.heavy && !opts.include_heavy {
+        return false;
+    }
+    if opts.selectors.is_empty() {
+        return true;
+    }
+    let full = format!("{}/{}", case.suite, case.name);
+    opts.selectors
+        .iter()
+        .any(|s| s == &case.suite || s == case.id() || s == &case.name || *s == full)
+}
+
+/// A broken case is selected as a case would be (its suite, name or id; heavy when it says so).
+fn broken_selected(b: &Broken, opts: &Options) -> bool {
+    if let Some(case) = &b.parsed {
+        return selected(case, opts);
+    }
+    let full = format!("{}/{}", b.suite, b.case);
+    opts.selectors.is_empty()
+        || opts
+            .selectors
+            .iter()
+            .any(|s| s == &b.suite || s == &b.case || *s == full)
+}
+
+pub(super) fn check_matches(case: &Case, check_id: &str, filter: &Option<String>) -> bool {
+    match filter {
+        None => true,
+        Some(f) => format!("{}/{}/{}", case.suite, case.name, check_id).contains(f.as_str()),
+    }
+}
+
+/// The repository's cases: those that load and lint clean, and the broken ones (each will be
+/// a FAIL row). Errors: lint findings that are no single case's.
+pub fn load(repo: &Repo) -> Result<Loaded, Vec<String>> {
+    let (cases, errors) = crate::definition::case::load_cases(&repo.cases_dir());
+    let findings = crate::definition::lint::lint(repo, &cases);
+    let (cases, broken, fatal) = crate::definition::broken::split(cases, errors, findings);
+    if !fatal.is_empty() {
+        return Err(fatal);
+    }
+    Ok(Loaded { cases, broken })
+}
+
+/// What [`load`] found.
+pub struct Loaded {
+    pub cases: Vec<Case>,
+    pub broken: Vec<Broken>,
+}
+
+/// The selected cases and their jobs, deduplicated by content (what a run or a shard of it
+/// executes; `crate::run::shard` shares `jobs` out by cost).
+pub struct Plan<'a> {
+    pub cases: Vec<&'a Case>,
+    /// The selected broken cases (no jobs; a FAIL row each).
+    pub broken: Vec<&'a Broken>,
+    pub jobs: Vec<Job>,
+    /// Per case: scene name -> index into `jobs` (or why its jobs could not be made).
+    pub(super) case_jobs: Vec<BTreeMap<String, Result<usize, String>>>,
+}
+
+/// Selects the cases of `opts` and makes their jobs. Errors: no case matches.
+pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<String>> {
+    let broken: Vec<&Broken> = loaded
+        .broken
+        .iter()
+        .filter(|b| broken_selected(b, opts))
+        .collect();
+    let chosen: Vec<&Case> = loaded
+        .cases
+        .iter()
+        .filter(|c| selected(c, opts))
+        .filter(|c| {
+            c.file
+                .checks
+                .iter()
+                .any(|k| check_matches(c, &k.value.id, &opts.filter))
+        })
+        .collect();
+    if chosen.is_empty() && broken.is_empty() {
+        return Err(vec![format!(
+            "no case matches {:?}{}",
+            opts.selectors,
+            opts.filter
+                .as_ref()
+                .map(|f| format!(" with filter {f:?}"))
+                .unwrap_or_default()
+        )]);
+    }
+
+    // Jobs, deduplicated by content.
+    let mut unique: Vec<Job> = Vec::new();
+    let mut index_of: BTreeMap<String, usize> = BTreeMap::new();
+    let mut case_jobs: Vec<BTreeMap<String, Result<usize, String>>> = Vec::new();
+    for case in &chosen {
+        let case_skipped = case.file.skip.as_ref().is_some_and(|s| s.value.is_skip());
+        let mut map = BTreeMap::new();
+        if !case_skipped {
+            let all = jobs::case_jobs(case).and_then(|mut js| {
+                js.extend(crate::run::discriminate::jobs(
+                    case,
+                    &js,
+                    opts.include_heavy,
+                )?);
+                Ok(js)
+            });
+            match all {
+                Ok(js) => {
+                    for (name, job) in js {
+                        let key = job.key();
+                        let i = *index_of.entry(key).or_insert_with(|| {
+                            unique.push(job);
+                            unique.len() - 1
+                        });
+                        map.insert(name, Ok(i));
+                    }
+                }
+                Err(e) => {
+                    map.insert(String::new(), Err(e));
+                }
+            }
+        }
+        case_jobs.push(map);
+    }
+    Ok(Plan {
+        cases: chosen,
+        broken,
+        jobs: unique,
+        case_jobs,
+    })
+}
