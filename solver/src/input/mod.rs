@@ -3,13 +3,15 @@
 //! validated scene, importing nothing else of this folder); the scene read, overridden at its
 //! dotted paths ([`overrides`]) and validated ([`validate`], its parser errors named by
 //! [`yaml_field`]); the cost of a scene estimated before anything is allocated ([`estimate`]:
-//! [`budget`], [`time_step`]); and the inputs that look wrong ([`plausibility`]).
+//! [`budget`], [`time_step`]); the inputs that look wrong ([`plausibility`]); and the
+//! scene's JSON Schema and Markdown reference, generated from its types ([`schema`]).
 
 pub mod error;
 pub mod estimate;
 pub mod overrides;
 pub mod plausibility;
 pub mod scene;
+pub mod schema;
 pub mod spans;
 pub mod validate;
 pub mod yaml_field;

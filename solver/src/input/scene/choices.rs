@@ -1,15 +1,20 @@
 //! The scene's choices: the enumerations written by name in a scene file (`kebab-case` or
 //! `snake_case` words) and kept as they are in the validated [`super::Scene`].
 
+use std::borrow::Cow;
+
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Deserialize;
 
 /// How the plate deforms: small strains and rotations (the paper's model, eqs. 13-16), or
 /// finite deformation (updated Lagrangian, Green-Naghdi rate: `ALGORITHM.md` section 3c).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Kinematics {
+    /// Small strains and rotations (the paper's model).
     #[default]
     Small,
+    /// Finite deformation: updated Lagrangian, Green-Naghdi rate.
     Finite,
 }
 
@@ -28,7 +33,7 @@ impl Kinematics {
 }
 
 /// How the ends of the plate (x = 0 and x = L) are held.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Ends {
     /// `u_x = u_y = 0` (the paper).
@@ -43,7 +48,8 @@ pub enum Ends {
     Free,
 }
 
-/// The element formulation; its YAML names are [`ElementKind::name`], read by [`FromStr`].
+/// The element formulation; its YAML names are [`ElementKind::name`], read by
+/// [`std::str::FromStr`].
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(try_from = "String", into = "&'static str")]
 pub enum ElementKind {
@@ -57,6 +63,15 @@ pub enum ElementKind {
 }
 
 impl ElementKind {
+    /// What the element is, in words (the schema's description of its name).
+    pub fn description(self) -> &'static str {
+        match self {
+            ElementKind::Q4Full => "2x2 Gauss (locks in bending and under plastic flow; kept for comparison).",
+            ElementKind::Q4Sri => "Selective-reduced integration / B-bar: deviatoric 2x2, volumetric 1 point (the default).",
+            ElementKind::Q4OnePoint => "One point with Flanagan-Belytschko hourglass control (`mesh.hourglass`).",
+        }
+    }
+
     pub const ALL: [ElementKind; 3] = [
         ElementKind::Q4Full,
         ElementKind::Q4Sri,
@@ -70,6 +85,24 @@ impl ElementKind {
             ElementKind::Q4Sri => "q4-sri",
             ElementKind::Q4OnePoint => "q4-1pt",
         }
+    }
+}
+
+/// The element names, each with what it is: the schema's allowed words.
+impl JsonSchema for ElementKind {
+    fn schema_name() -> Cow<'static, str> {
+        "ElementKind".into()
+    }
+
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        let kinds: Vec<serde_json::Value> = ElementKind::ALL
+            .iter()
+            .map(|k| serde_json::json!({"type": "string", "const": k.name(), "description": k.description()}))
+            .collect();
+        json_schema!({
+            "description": "The element formulation: a 4-node quadrilateral.",
+            "oneOf": kinds,
+        })
     }
 }
 
@@ -107,16 +140,18 @@ impl From<ElementKind> for &'static str {
 }
 
 /// Half plate with a symmetry plane at mid-span, or the full plate.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Model {
+    /// Half the plate, with a symmetry plane at mid-span.
     #[default]
     Half,
+    /// The whole plate.
     Full,
 }
 
 /// How the surface coupling keeps the nodes out of the nose.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Enforcement {
     /// Predictor-corrector: the forces that put the predicted nodes back on the surface.
@@ -127,16 +162,18 @@ pub enum Enforcement {
 }
 
 /// A node on the mid-span line.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum MidSpanNode {
+    /// The node on the mid-plane.
     #[default]
     MidPlane,
+    /// The node on the top surface.
     TopSurface,
 }
 
 /// When the stable step is estimated (`time.dt.update`; `ALGORITHM.md` section 6b).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum DtUpdate {
     /// Once, on the mesh as made: the step is fixed for the run (the paper's model).
@@ -159,7 +196,7 @@ impl DtUpdate {
 
 /// Which estimate of the largest eigenvalue sets the stable step (`time.dt.estimate`; see
 /// `stable_step`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Estimate {
     /// The element eigenvalue bound.
@@ -180,11 +217,13 @@ impl Estimate {
 
 /// The section modelled: a slice of a plate of width `plate.width` (plane strain, the paper's
 /// model), or the half-section of a round plate whose axis is the mid-span line.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum Geometry {
+    /// A slice of a plate of width `plate.width` in plane strain (the paper's model).
     #[default]
     PlaneStrain,
+    /// The half-section of a round plate whose axis is the mid-span line.
     Axisymmetric,
 }
 

@@ -2,9 +2,65 @@
 //! enum would say "did not match any variant"): `load.impactor.contact` ([`ContactFile`]) and
 //! `time.end` ([`EndFile`]).
 
+use std::borrow::Cow;
+
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::Deserialize;
 
 use super::scene_file::{AfterContactFile, ContactFile, EndFile, SurfaceFile};
+
+/// What [`ContactVisitor`] accepts: the word `nodal` or `surface`, or the mapping
+/// `{surface: {...}}` of exactly that key (its value the options, `~` for none).
+impl JsonSchema for ContactFile {
+    fn schema_name() -> Cow<'static, str> {
+        "ContactFile".into()
+    }
+
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let mut options = generator.subschema_for::<Option<SurfaceFile>>();
+        options.insert(
+            "description".into(),
+            "The rigid nose in contact with the plate's top surface, with its options (`~`: the defaults).".into(),
+        );
+        json_schema!({
+            "description": "How the nose meets the plate: `nodal`, `surface` or `{surface: {enforcement, penalty_scale}}`.",
+            "oneOf": [
+                {
+                    "type": "string",
+                    "enum": ["nodal", "surface"],
+                    "description": "`nodal`: the paper's contact law at one node; `surface`: the rigid nose in contact with the plate's top surface, with the default options.",
+                },
+                {
+                    "type": "object",
+                    "description": "The surface coupling with its options.",
+                    "properties": {"surface": options},
+                    "required": ["surface"],
+                    "additionalProperties": false,
+                },
+            ],
+        })
+    }
+}
+
+/// What [`EndVisitor`] accepts: a number of seconds, or the mapping `{after_contact: s}`
+/// ([`AfterContactFile`]). (A number in quotes reads as the number with a warning, as
+/// everywhere in a scene; the schema leaves it out.)
+impl JsonSchema for EndFile {
+    fn schema_name() -> Cow<'static, str> {
+        "EndFile".into()
+    }
+
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let after_contact = generator.subschema_for::<AfterContactFile>();
+        json_schema!({
+            "description": "When the run ends: a time, s, or `{after_contact: s}`.",
+            "oneOf": [
+                {"type": "number", "description": "End time, s; > 0."},
+                after_contact,
+            ],
+        })
+    }
+}
 
 impl<'de> Deserialize<'de> for ContactFile {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {

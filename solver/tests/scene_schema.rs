@@ -1,0 +1,278 @@
+//! The scene's JSON Schema and its Markdown reference against the repository:
+//! - the committed `solver/scene.schema.json` and `docs/scene-reference.md` are what the
+//!   scene's types make now (else: run `impact schema` to update them);
+//! - every property of the schema has a description, and every number its unit;
+//! - every scene file of the repository validates against the schema, and starts with the
+//!   YAML language server's modeline naming it by a relative path that resolves.
+
+use std::path::{Path, PathBuf};
+
+use impact_solver::input::schema::{
+    scene_reference_markdown, scene_schema, scene_schema_json, REFERENCE_PATH, SCHEMA_PATH,
+};
+use serde_json::Value;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("..")
+        .canonicalize()
+        .expect("the repository root")
+}
+
+/// The scene files whose lines are pinned elsewhere and whose header comment is one line:
+/// the bad-input suite (`verification/bad-inputs/cases.yaml`) expects errors at absolute
+/// line:column positions of its base scenes, so a line added to these would move every
+/// position it checks. (Elsewhere the modeline took no line: the header comment's first two
+/// lines were joined.) They validate against the schema; they carry no modeline.
+const LINES_PINNED: [&str; 5] = [
+    "verification/bad-inputs/base/cowper.yaml",
+    "verification/bad-inputs/base/impact-v11.yaml",
+    "verification/bad-inputs/base/rate.yaml",
+    "verification/bad-inputs/base/surface.yaml",
+    "verification/bad-inputs/base/traction.yaml",
+];
+
+/// The modeline of a scene file in `dir`: the schema by its path relative to `dir`.
+fn modeline_prefix() -> &'static str {
+    "# yaml-language-server: $schema="
+}
+
+fn yaml_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = entries.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for p in entries {
+        let name = p.file_name().unwrap_or_default().to_string_lossy();
+        if p.is_dir() {
+            if !(name.starts_with('.') || name == "target" || name == "node_modules") {
+                yaml_files(&p, out);
+            }
+        } else if name.ends_with(".yaml") || name.ends_with(".yml") {
+            out.push(p);
+        }
+    }
+}
+
+/// A YAML file's document as JSON.
+fn document(path: &Path) -> Option<Value> {
+    let text = std::fs::read_to_string(path).ok()?;
+    serde_saphyr::from_str::<Value>(&text).ok()
+}
+
+/// The repository's scene files (relative paths) with their documents: the YAML files whose
+/// document is a mapping with `plate`, `material` and `load` (case.yaml files are cases; the
+/// uncertainty-quantification declarations and the bad-input list are not scenes).
+fn scene_files() -> Vec<(String, Value)> {
+    let root = root();
+    let mut files = Vec::new();
+    yaml_files(&root, &mut files);
+    files
+        .into_iter()
+        .filter(|p| p.file_name().is_some_and(|n| n != "case.yaml"))
+        .filter_map(|p| {
+            let doc = document(&p)?;
+            let map = doc.as_object()?;
+            let scene = ["plate", "material", "load"]
+                .iter()
+                .all(|k| map.contains_key(*k));
+            let rel = p
+                .strip_prefix(&root)
+                .ok()?
+                .to_string_lossy()
+                .replace('\\', "/");
+            scene.then_some((rel, doc))
+        })
+        .collect()
+}
+
+#[test]
+fn the_committed_schema_and_reference_are_up_to_date() {
+    let root = root();
+    for (path, made) in [
+        (SCHEMA_PATH, scene_schema_json()),
+        (REFERENCE_PATH, scene_reference_markdown()),
+    ] {
+        let committed = std::fs::read_to_string(root.join(path)).unwrap_or_default();
+        assert!(
+            committed == made,
+            "{path} is not what the scene's types make: run `impact schema` to update it (or `cargo test -p impact-solver --release --test scene_schema -- --ignored`)"
+        );
+    }
+    assert_eq!(scene_schema_json(), scene_schema_json(), "deterministic");
+}
+
+/// Every `properties` entry of `schema`, with its dotted path.
+fn properties<'a>(path: &str, schema: &'a Value, out: &mut Vec<(String, &'a Value)>) {
+    match schema {
+        Value::Object(map) => {
+            if let Some(Value::Object(props)) = map.get("properties") {
+                for (key, p) in props {
+                    out.push((format!("{path}.{key}"), p));
+                }
+            }
+            for (key, value) in map {
+                properties(&format!("{path}/{key}"), value, out);
+            }
+        }
+        Value::Array(items) => {
+            for (i, value) in items.iter().enumerate() {
+                properties(&format!("{path}/{i}"), value, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The SI units a number's description names (`(-)`: none), each written after `, `, ` ` or
+/// `(` and before `;`, `,`, `.` or `)`.
+const UNITS: [&str; 11] = [
+    "m", "m/s", "kg", "kg/m^3", "s", "Pa", "N", "K", "1/s", "J/(kg K)", "-",
+];
+
+fn names_a_unit(description: &str) -> bool {
+    UNITS.iter().any(|u| {
+        [", ", " ", "("].iter().any(|before| {
+            [";", ",", ".", ")"]
+                .iter()
+                .any(|after| description.contains(&format!("{before}{u}{after}")))
+        })
+    })
+}
+
+#[test]
+fn every_property_has_a_description_and_every_number_its_unit() {
+    let schema = scene_schema();
+    let mut all = Vec::new();
+    properties("", &schema, &mut all);
+    assert!(all.len() > 60, "only {} properties", all.len());
+    let definitions = schema["definitions"].as_object().unwrap();
+    let resolve = |p: &Value| -> Value {
+        let target = p
+            .get("$ref")
+            .or_else(|| p.get("allOf").and_then(|a| a[0].get("$ref")));
+        match target.and_then(Value::as_str) {
+            Some(r) => definitions[r.rsplit('/').next().unwrap()].clone(),
+            None => p.clone(),
+        }
+    };
+    let mut missing = Vec::new();
+    let mut unitless = Vec::new();
+    for (path, p) in &all {
+        let Some(description) = p.get("description").and_then(Value::as_str) else {
+            missing.push(path.clone());
+            continue;
+        };
+        let target = resolve(p);
+        let number = |t: &Value| {
+            let types = match t.get("type") {
+                Some(Value::String(s)) => vec![s.as_str()],
+                Some(Value::Array(a)) => a.iter().filter_map(Value::as_str).collect(),
+                _ => Vec::new(),
+            };
+            types.contains(&"number") || types.contains(&"integer")
+        };
+        if number(&target) && !names_a_unit(description) {
+            unitless.push(format!("{path}: {description}"));
+        }
+    }
+    assert!(
+        missing.is_empty(),
+        "properties without a description: {missing:#?}"
+    );
+    assert!(unitless.is_empty(), "numbers without a unit: {unitless:#?}");
+}
+
+#[test]
+fn every_scene_file_validates_against_the_schema() {
+    let schema = scene_schema();
+    assert!(
+        jsonschema::meta::is_valid(&schema),
+        "the schema is not a valid JSON Schema"
+    );
+    let validator = jsonschema::validator_for(&schema).expect("the schema compiles");
+    let scenes = scene_files();
+    for dir in [
+        "verification/scenes/",
+        "verification/cases/",
+        "scripts/ci-scenes/",
+        "scripts/examples/",
+        "reference-data/independent/scenes/",
+        "solver/tests/scenes/",
+        "verification/bad-inputs/base/",
+    ] {
+        assert!(
+            scenes.iter().any(|(p, _)| p.starts_with(dir)),
+            "no scene file found under {dir}"
+        );
+    }
+    let mut invalid = Vec::new();
+    for (path, doc) in &scenes {
+        for error in validator.iter_errors(doc) {
+            invalid.push(format!("{path}: {} at {}", error, error.instance_path()));
+        }
+    }
+    assert!(
+        invalid.is_empty(),
+        "scene files the schema refuses:\n{}",
+        invalid.join("\n")
+    );
+    // The schema refuses what the reader refuses: an unknown key, a word not allowed.
+    let mut doc = scenes[0].1.clone();
+    doc["plate"]["colour"] = Value::from("red");
+    assert!(!validator.is_valid(&doc), "an unknown key passes");
+    let mut doc = scenes[0].1.clone();
+    doc["mesh"]["element"] = Value::from("q8");
+    assert!(!validator.is_valid(&doc), "an unknown element passes");
+}
+
+#[test]
+fn every_scene_file_starts_with_the_schema_modeline() {
+    let root = root();
+    let schema = root
+        .join(SCHEMA_PATH)
+        .canonicalize()
+        .expect("the schema file");
+    let mut wrong = Vec::new();
+    let mut pinned = 0;
+    for (rel, _) in scene_files() {
+        let path = root.join(&rel);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let first = text.lines().next().unwrap_or_default();
+        if LINES_PINNED.contains(&rel.as_str()) {
+            pinned += 1;
+            assert!(
+                !first.starts_with(modeline_prefix()),
+                "{rel}: has the modeline now: strike it off LINES_PINNED"
+            );
+            continue;
+        }
+        let Some(target) = first.strip_prefix(modeline_prefix()) else {
+            wrong.push(format!(
+                "{rel}: the first line is not the modeline: {first:?}"
+            ));
+            continue;
+        };
+        let resolved = path.parent().unwrap().join(target.trim()).canonicalize();
+        if resolved.as_ref().ok() != Some(&schema) {
+            wrong.push(format!("{rel}: {target} does not resolve to {SCHEMA_PATH}"));
+        }
+    }
+    assert_eq!(
+        pinned,
+        LINES_PINNED.len(),
+        "a file of LINES_PINNED is gone or no scene"
+    );
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// Writes the two files (what `impact schema` does): `cargo test -p impact-solver --release
+/// --test scene_schema -- --ignored`.
+#[test]
+#[ignore = "writes solver/scene.schema.json and docs/scene-reference.md"]
+fn write_files() {
+    let written =
+        impact_solver::input::schema::write_files(&root()).expect("the files are written");
+    assert_eq!(written.len(), 2);
+}
