@@ -79,7 +79,7 @@ def simulate(
 
     Args:
         scene: a scene file path, YAML text (with a line break, or one ``{...}`` flow line),
-            or a dict with the scene's keys (README "Scene reference"; SI units).
+            or a dict with the scene's keys (docs/scene-reference.md; SI units).
         out: a folder to write the files ``impact simulate --out`` writes (``history.csv``,
             ``summary.json``, VTK fields when the scene asks), by the same code and with the
             same protections: staged and moved in only on success; ``/``, the home folder and

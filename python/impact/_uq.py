@@ -239,7 +239,7 @@ def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
     """Runs the study declared in the file ``study`` and returns its :class:`UQResult`.
 
     Args:
-        study: the declaration (YAML; see ``verification/uq/`` and the README).
+        study: the declaration (YAML; see ``verification/uq/`` and docs/user-guide.md).
         client, jobs: as for :func:`impact.sweep` (a Dask client or address; local runs at a time).
         sizes: the base sizes ``N`` to go through instead of the declared ones (each twice
             the one before); the study stops at the first size where every output converged.

@@ -28,9 +28,7 @@ What is verified, for README.md and every docs/*.md:
   resolve. None runs: the package `impact` they import is built into the venv after these
   tests in `.ci/run`.
 - Every Markdown link or image to a file of the repository resolves, inside the repository;
-  an `#anchor` into a Markdown file names one of its headings (GitHub's slugs). Links to
-  pages not yet committed by the change that generates them (`NOT_YET_COMMITTED`) are
-  checked only once they exist.
+  an `#anchor` into a Markdown file names one of its headings (GitHub's slugs).
 
 The parse-only convention: the line `<!-- snippet: parse-only -->` before a fenced block
 (blank lines between allowed; indented alike inside a list) marks a block that takes long or
@@ -70,8 +68,6 @@ EXTERNAL_PROGRAMS = {"bash", "cargo", "git", "pip", "python", "python3", "sbatch
 SHELL_BUILTINS = {"cd", "echo", "export", "set", "source", ".", "test", "[", "true", "false",
                   "exit", "wait", "read", "for", "do", "done", "if", "then", "else", "fi",
                   "while", "in"}
-# Pages another change generates and commits; links to them are checked once they exist.
-NOT_YET_COMMITTED = {"docs/scene-reference.md"}
 
 
 def pages() -> list[Path]:
@@ -427,8 +423,6 @@ def test_links_resolve(page):
             problems.append(f"{where}: outside the repository")
             continue
         if not dest.exists():
-            if str(rel) in NOT_YET_COMMITTED:
-                continue
             problems.append(f"{where}: {rel} does not exist")
             continue
         if anchor and dest.suffix == ".md" and anchor not in anchors(dest):

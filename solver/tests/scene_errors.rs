@@ -1,7 +1,7 @@
 //! Bad input gets one clear message naming the file, line and column, the field, the value
 //! and what is allowed - never a panic - and leaves no output behind.
 //!
-//! Reference: the scene contract of the README / ALGORITHM.md (which values are allowed).
+//! Reference: the scene contract of docs/scene-reference.md / ALGORITHM.md (which values are allowed).
 
 use std::path::{Path, PathBuf};
 

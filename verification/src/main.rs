@@ -28,7 +28,7 @@ struct Cli {
 enum Command {
     /// Run one scene: writes history.csv, summary.json (and VTK fields if asked) to --out.
     Simulate {
-        /// Scene file (YAML, SI units; see README "Scene reference").
+        /// Scene file (YAML, SI units; every key: docs/scene-reference.md).
         scene: PathBuf,
         /// Output folder (created; earlier outputs of the same names are replaced). Refused
         /// when it is `/`, the home folder, or a non-empty folder without an earlier run.
@@ -62,7 +62,7 @@ enum Command {
         /// Parallel runs, >= 1 (default: the number of cores).
         #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
         jobs: Option<u16>,
-        /// Output folder (the README's place for the report).
+        /// Output folder (where the README and docs/user-guide.md look for the report).
         #[arg(long, default_value = "out/verification")]
         out: PathBuf,
         /// Leave out the cases marked heavy (what `cargo test` runs).
@@ -99,6 +99,14 @@ enum Command {
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
     /// reasons, provenance of reference files.
     Lint {
+        /// Repository root (default: found from the current folder).
+        #[arg(long)]
+        root: Option<PathBuf>,
+    },
+    /// Write the scene's JSON Schema (solver/scene.schema.json, read by editors through the
+    /// first line of every scene file) and the scene reference generated from it
+    /// (docs/scene-reference.md), both from the scene's types.
+    Schema {
         /// Repository root (default: found from the current folder).
         #[arg(long)]
         root: Option<PathBuf>,
@@ -188,6 +196,7 @@ fn main() -> ExitCode {
             )
         }
         Command::Lint { root } => lint(root),
+        Command::Schema { root } => schema(root),
         Command::Diff { run_a, run_b, tol } => {
             match impact_verification::review::diff::diff_runs(&run_a, &run_b, tol) {
                 Ok(d) => {
@@ -240,6 +249,25 @@ fn repo(root: Option<PathBuf>) -> Result<Repo, ExitCode> {
         eprintln!("error: no verification/cases folder here or above (use --root)");
         ExitCode::from(2)
     })
+}
+
+fn schema(root: Option<PathBuf>) -> ExitCode {
+    let repo = match repo(root) {
+        Ok(r) => r,
+        Err(c) => return c,
+    };
+    match impact_solver::input::schema::write_files(&repo.root) {
+        Ok(files) => {
+            for f in files {
+                println!("wrote {}", f.display());
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("error: impact schema: {e}");
+            ExitCode::from(2)
+        }
+    }
 }
 
 fn lint(root: Option<PathBuf>) -> ExitCode {

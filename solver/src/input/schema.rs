@@ -87,7 +87,10 @@ pub fn write_files(repo_root: &Path) -> std::io::Result<Vec<PathBuf>> {
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent)?;
         }
-        std::fs::write(&path, text)?;
+        // Written beside, then renamed over: an interrupted write leaves the old file whole.
+        let staged = path.with_extension("partial");
+        std::fs::write(&staged, text)?;
+        std::fs::rename(&staged, &path)?;
         written.push(path);
     }
     Ok(written)
