@@ -19,18 +19,6 @@ fn root() -> PathBuf {
         .expect("the repository root")
 }
 
-/// The scene files whose lines are pinned elsewhere and whose header comment is one line:
-/// the bad-input suite (`verification/bad-inputs/cases.yaml`) expects errors at absolute
-/// line:column positions of its base scenes, so a line added to these would move every
-/// position it checks. (Elsewhere the modeline took no line: the header comment's first two
-/// lines were joined.) They validate against the schema; they carry no modeline.
-const LINES_PINNED: [&str; 5] = [
-    "verification/bad-inputs/base/cowper.yaml",
-    "verification/bad-inputs/base/impact-v11.yaml",
-    "verification/bad-inputs/base/rate.yaml",
-    "verification/bad-inputs/base/surface.yaml",
-    "verification/bad-inputs/base/traction.yaml",
-];
 
 /// The modeline of a scene file in `dir`: the schema by its path relative to `dir`.
 fn modeline_prefix() -> &'static str {
@@ -235,19 +223,10 @@ fn every_scene_file_starts_with_the_schema_modeline() {
         .canonicalize()
         .expect("the schema file");
     let mut wrong = Vec::new();
-    let mut pinned = 0;
     for (rel, _) in scene_files() {
         let path = root.join(&rel);
         let text = std::fs::read_to_string(&path).unwrap();
         let first = text.lines().next().unwrap_or_default();
-        if LINES_PINNED.contains(&rel.as_str()) {
-            pinned += 1;
-            assert!(
-                !first.starts_with(modeline_prefix()),
-                "{rel}: has the modeline now: strike it off LINES_PINNED"
-            );
-            continue;
-        }
         let Some(target) = first.strip_prefix(modeline_prefix()) else {
             wrong.push(format!(
                 "{rel}: the first line is not the modeline: {first:?}"
@@ -259,11 +238,6 @@ fn every_scene_file_starts_with_the_schema_modeline() {
             wrong.push(format!("{rel}: {target} does not resolve to {SCHEMA_PATH}"));
         }
     }
-    assert_eq!(
-        pinned,
-        LINES_PINNED.len(),
-        "a file of LINES_PINNED is gone or no scene"
-    );
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
 
