@@ -19,7 +19,6 @@ fn root() -> PathBuf {
         .expect("the repository root")
 }
 
-
 /// The modeline of a scene file in `dir`: the schema by its path relative to `dir`.
 fn modeline_prefix() -> &'static str {
     "# yaml-language-server: $schema="
