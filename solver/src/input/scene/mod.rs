@@ -9,6 +9,7 @@
 pub mod choices;
 pub mod file_visitors;
 pub mod scene_file;
+pub mod scene_text;
 pub mod scene_types;
 
 pub use choices::*;
