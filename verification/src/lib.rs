@@ -1,6 +1,8 @@
 //! The verification harness of the impact solver, in the order a case travels through it:
 //! - [`definition`]: what a case is (YAML: requirement, scenes, checks), the lint, how a
 //!   check is evaluated and what its result means;
+//! - [`codes`]: the codes the checks are evaluated on (`impact`, adapters, results read
+//!   from a folder);
 //! - [`run`]: the jobs, the parallel runner and its matrix (results.json, JUnit), shards;
 //! - [`review`]: a run against another (`impact diff`, `--baseline`) and the snapshots;
 //! - [`report`]: the V&V report;
@@ -8,6 +10,7 @@
 //!
 //! The `impact` binary (`src/main.rs`) is its command line.
 
+pub mod codes;
 pub mod definition;
 pub mod report;
 pub mod review;

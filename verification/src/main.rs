@@ -1,12 +1,13 @@
 //! `impact`: the command-line front of the solver and of the verification matrix.
 
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use impact_solver::output::RunOptions;
 use impact_solver::progress::ProgressMode;
+use impact_verification::codes::Code;
 use impact_verification::report::ReportOptions;
 use impact_verification::run::runner::{self, Options, Repo};
 
@@ -95,6 +96,16 @@ enum Command {
         /// writes (results.json, junit.xml, matrix.txt, runs/, with --report the report).
         #[arg(long, value_name = "DIR", num_args = 1.., conflicts_with_all = ["shard", "selectors", "filter", "light"])]
         merge: Vec<PathBuf>,
+        /// The code to verify (repeatable; default `impact`, this solver): another code's
+        /// name runs the cases through its adapter, adapters/NAME/ (adapters/README.md), and
+        /// its rows follow impact's, evaluated by the same checks.
+        #[arg(long = "code", value_name = "NAME", conflicts_with_all = ["shard", "merge"])]
+        codes: Vec<String>,
+        /// Evaluate the checks on results computed elsewhere: DIR/<suite>/<case>/<scene>/
+        /// with history.csv and summary.json in the adapter contract (adapters/README.md);
+        /// the rows carry DIR's name as their code.
+        #[arg(long, value_name = "DIR", conflicts_with_all = ["shard", "merge"])]
+        results_from: Option<PathBuf>,
     },
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
     /// reasons, provenance of reference files.
@@ -181,6 +192,8 @@ fn main() -> ExitCode {
             baseline,
             shard,
             merge,
+            codes,
+            results_from,
         } => {
             let report = report.then_some(ReportOptions {
                 benchmarks,
@@ -192,7 +205,19 @@ fn main() -> ExitCode {
                 (None, true) => Split::Whole,
             };
             verify(
-                selectors, filter, jobs, out, light, report, root, baseline, split,
+                selectors,
+                filter,
+                jobs,
+                out,
+                light,
+                report,
+                root,
+                baseline,
+                split,
+                CodeArgs {
+                    codes,
+                    results_from,
+                },
             )
         }
         Command::Lint { root } => lint(root),
@@ -297,6 +322,42 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
     }
 }
 
+/// The codes `impact verify` runs the cases on (`--code`, `--results-from`).
+struct CodeArgs {
+    codes: Vec<String>,
+    results_from: Option<PathBuf>,
+}
+
+impl CodeArgs {
+    /// The codes named, each found (an adapter's folder, a results folder) before any run;
+    /// `impact` alone when none is named.
+    fn resolve(self, root: &Path) -> Result<Vec<Code>, String> {
+        let mut names = self.codes;
+        if names.is_empty() && self.results_from.is_none() {
+            names.push("impact".into());
+        }
+        let mut codes = Vec::new();
+        for name in &names {
+            if names.iter().filter(|n| *n == name).count() > 1 {
+                return Err(format!("--code {name} is given twice"));
+            }
+            codes.push(Code::find(root, name)?);
+        }
+        if let Some(dir) = &self.results_from {
+            let code = Code::results_from(dir)?;
+            if names.contains(&code.name()) {
+                return Err(format!(
+                    "--results-from {}: its name {:?} is also a --code",
+                    dir.display(),
+                    code.name()
+                ));
+            }
+            codes.push(code);
+        }
+        Ok(codes)
+    }
+}
+
 /// The whole matrix, one shard of it, or the merge of shards (`impact_verification::run::shard`).
 enum Split {
     Whole,
@@ -315,11 +376,28 @@ fn verify(
     root: Option<PathBuf>,
     baseline: Option<PathBuf>,
     split: Split,
+    code_args: CodeArgs,
 ) -> ExitCode {
     let repo = match repo(root) {
         Ok(r) => r,
         Err(c) => return c,
     };
+    let codes = match code_args.resolve(&repo.root) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if codes.iter().any(|c| !c.is_impact()) {
+        // Ctrl-C: the adapters' process groups (and the codes they started) are killed and
+        // their scratch folders removed before the exit; nothing of --out is written.
+        let _ = ctrlc::set_handler(|| {
+            impact_solver::interrupt::request_stop();
+            impact_verification::codes::process::stop_all();
+            std::process::exit(130);
+        });
+    }
     // Every input is checked before the first run: a baseline that is missing or malformed
     // is refused now, not after the whole matrix, and as `impact report --from` refuses it.
     if let Some(dir) = &baseline {
@@ -342,7 +420,7 @@ fn verify(
         progress: std::io::stderr().is_terminal(),
     };
     let outcome = match split {
-        Split::Whole => runner::verify(&repo, &opts),
+        Split::Whole => runner::verify_codes(&repo, &opts, &codes),
         Split::Merge(dirs) => impact_verification::run::shard::merge(&repo, &dirs, jobs),
         Split::Shard(shard) => {
             return match impact_verification::run::shard::run_shard(&repo, &opts, shard, &out) {

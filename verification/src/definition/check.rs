@@ -20,6 +20,10 @@ pub enum Status {
     Fail,
     #[serde(rename = "SKIP")]
     Skip,
+    /// Another code cannot express what the check measures (a feature it lacks, a kernel of
+    /// `impact` itself), or did not produce it: neither OK nor FAIL (issue 38).
+    #[serde(rename = "N/E")]
+    NotExpressible,
 }
 
 impl Status {
@@ -28,6 +32,7 @@ impl Status {
             Status::Ok => "OK",
             Status::Fail => "FAIL",
             Status::Skip => "SKIP",
+            Status::NotExpressible => "N/E",
         }
     }
 }

@@ -21,6 +21,9 @@ pub struct RunData {
     pub info: BTreeMap<String, String>,
     /// summary.json without wall times (scene runs only).
     pub summary: Option<Value>,
+    /// Files kept beside the history in the run's folder (another code's scene, its input
+    /// and `adapter.json`), by name.
+    pub files: BTreeMap<String, Vec<u8>>,
 }
 
 impl RunData {

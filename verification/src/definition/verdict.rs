@@ -26,6 +26,9 @@ pub enum Verdict {
     /// Not evaluated (with its reason).
     #[serde(rename = "SKIP")]
     Skip,
+    /// Not expressible in the code that ran it, or not produced by it (another code's row).
+    #[serde(rename = "N/E")]
+    NotExpressible,
 }
 
 impl Verdict {
@@ -36,6 +39,7 @@ impl Verdict {
             (Status::Fail, true) => Verdict::KnownFail,
             (Status::Fail, false) => Verdict::Fail,
             (Status::Skip, _) => Verdict::Skip,
+            (Status::NotExpressible, _) => Verdict::NotExpressible,
         }
     }
     pub fn of_check(k: &CheckResult) -> Verdict {
@@ -49,6 +53,7 @@ impl Verdict {
             Verdict::Fail => "FAIL",
             Verdict::UnexpectedPass => "XPASS",
             Verdict::Skip => "SKIP",
+            Verdict::NotExpressible => "N/E",
         }
     }
     /// A new failure or an unexpected pass: what makes the run exit 1.
@@ -65,6 +70,13 @@ pub struct Tally {
     pub fail: usize,
     pub xpass: usize,
     pub skip: usize,
+    /// Not expressible in (or not produced by) another code; 0 on `impact`'s rows.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub not_expressible: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Tally {
@@ -75,6 +87,7 @@ impl Tally {
             Verdict::Fail => self.fail += 1,
             Verdict::UnexpectedPass => self.xpass += 1,
             Verdict::Skip => self.skip += 1,
+            Verdict::NotExpressible => self.not_expressible += 1,
         }
     }
     pub fn of<'a>(checks: impl IntoIterator<Item = &'a CheckResult>) -> Tally {
@@ -100,6 +113,7 @@ impl Tally {
             (self.fail, Verdict::Fail),
             (self.xpass, Verdict::UnexpectedPass),
             (self.skip, Verdict::Skip),
+            (self.not_expressible, Verdict::NotExpressible),
         ] {
             if n > 0 {
                 parts.push(format!("{n} {}", v.label()));
@@ -107,12 +121,21 @@ impl Tally {
         }
         parts.join(", ")
     }
-    /// One line: "170 OK, 6 known FAIL, 0 unexpected FAIL, 0 XPASS, 0 SKIP".
+    /// One line: "170 OK, 6 known FAIL, 0 unexpected FAIL, 0 XPASS, 0 SKIP" (and ", 4 not
+    /// expressible" when another code's rows have any).
     pub fn line(&self) -> String {
+        let ne = match self.not_expressible {
+            0 => String::new(),
+            n => format!(", {n} not expressible"),
+        };
         format!(
-            "{} OK, {} known FAIL, {} unexpected FAIL, {} XPASS, {} SKIP",
+            "{} OK, {} known FAIL, {} unexpected FAIL, {} XPASS, {} SKIP{ne}",
             self.ok, self.known_fail, self.fail, self.xpass, self.skip
         )
+    }
+    /// All the checks counted.
+    pub fn total(&self) -> usize {
+        self.ok + self.known_fail + self.fail + self.xpass + self.skip + self.not_expressible
     }
 }
 

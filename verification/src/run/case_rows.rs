@@ -5,6 +5,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use crate::codes::Code;
 use crate::definition::broken::Broken;
 use crate::definition::case::{Case, Category};
 use crate::definition::check::{self, CheckResult, Context, Status};
@@ -38,11 +39,13 @@ pub(super) fn assemble_judged(
     let mut matrix = Matrix {
         counts: Counts::default(),
         cases: Vec::new(),
+        codes: Vec::new(),
     };
     let mut data = BTreeMap::new();
     for ((case, jobs_of), row) in plan.cases.iter().zip(&plan.case_jobs).zip(judged) {
         let (results, setup_error) = case_runs(jobs_of, |i| slots[i].clone());
-        let row = row.unwrap_or_else(|| case_result(repo, case, &results, setup_error, filter));
+        let row = row
+            .unwrap_or_else(|| case_result(repo, &plan.code, case, &results, setup_error, filter));
         matrix.cases.push(row);
         data.insert((case.suite.clone(), case.name.clone()), results);
     }
@@ -52,10 +55,16 @@ pub(super) fn assemble_judged(
     matrix
         .cases
         .sort_by(|a, b| (&a.suite, &a.case).cmp(&(&b.suite, &b.case)));
-    // The matrix's own invariant on the runs above, after the cases of the selection.
-    matrix.cases.extend(invariant_row(plan, &slots, filter));
+    // The matrix's own invariant on impact's runs above, after the cases of the selection.
+    if plan.code.is_impact() {
+        matrix.cases.extend(invariant_row(plan, &slots, filter));
+    }
     matrix.counts = Counts::from_tally(&matrix.tally());
-    Outcome { matrix, data }
+    Outcome {
+        matrix,
+        data,
+        code_data: Vec::new(),
+    }
 }
 
 /// The row of [`history_invariants`] from the plan's impact runs, each named by the first
@@ -84,6 +93,7 @@ fn invariant_row(
         return None;
     }
     Some(CaseResult {
+        code: "impact".into(),
         suite: history_invariants::SUITE.into(),
         case: history_invariants::CASE.into(),
         id: history_invariants::CASE.into(),
@@ -165,6 +175,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         ),
     };
     CaseResult {
+        code: "impact".into(),
         suite: b.suite.clone(),
         case: b.case.clone(),
         id,
@@ -191,6 +202,7 @@ fn broken_row(b: &Broken) -> CaseResult {
 /// discrimination by its wrong models, its series and what its runs report.
 pub(super) fn case_result(
     repo: &Repo,
+    code: &Code,
     case: &Case,
     results: &BTreeMap<String, JobResult>,
     setup_error: Option<String>,
@@ -221,6 +233,7 @@ pub(super) fn case_result(
         .map(|k| &k.value)
         .filter(|k| check_matches(case, &k.id, filter))
         .collect();
+    let expected = code.expected();
     let mut checks = Vec::new();
     let mut series_metrics: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for k in &evaluated {
@@ -239,6 +252,8 @@ pub(super) fn case_result(
         } else if let Some(e) = &setup_error {
             r.status = Status::Fail;
             r.message = e.clone();
+        } else if !code.is_impact() {
+            crate::run::other_code::judge(&mut r, k, case, results, &code.name(), &expected);
         }
         checks.push(r);
     }
@@ -253,7 +268,7 @@ pub(super) fn case_result(
             }
         }
     }
-    let discrimination = if case_skip.is_none() && setup_error.is_none() {
+    let discrimination = if case_skip.is_none() && setup_error.is_none() && code.is_impact() {
         crate::run::discriminate::rows(case, &evaluated, &ctx)
     } else {
         Vec::new()
@@ -263,6 +278,7 @@ pub(super) fn case_result(
         job_errors.insert("(setup)".into(), e);
     }
     CaseResult {
+        code: code.name(),
         suite: case.suite.clone(),
         case: case.name.clone(),
         id: case.id().to_string(),

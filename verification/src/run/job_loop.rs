@@ -80,7 +80,7 @@ pub(super) fn run_jobs(
     let announce = |c: usize| {
         let row = judge.map(|j| {
             let (results, setup_error) = case_runs(&plan.case_jobs[c], |i| slots[i].get().cloned());
-            case_result(j.repo, plan.cases[c], &results, setup_error, j.filter)
+            case_result(j.repo, &plan.code, plan.cases[c], &results, setup_error, j.filter)
         });
         let line = case_progress.line(c, row.as_ref().map(|r| Tally::of(&r.checks)).as_ref());
         if let Some(r) = row {
@@ -94,7 +94,7 @@ pub(super) fn run_jobs(
     case_progress.idle().into_iter().for_each(announce);
     pool.install(|| {
         order.par_iter().for_each(|&i| {
-            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| jobs[i].run()))
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| plan.run_job(i)))
                 .unwrap_or_else(|p| Err(format!("the run panicked: {}", panic_text(&*p))));
             let _ = slots[i].set(r);
             case_progress.run_done(i).into_iter().for_each(announce);

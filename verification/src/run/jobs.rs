@@ -199,6 +199,7 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
         histories,
         info: scene_info(scene, s),
         summary: Some(summary),
+        files: BTreeMap::new(),
     })
 }
 
@@ -225,7 +226,7 @@ pub fn impact_discriminators(
 }
 
 /// Numeric leaves of a JSON value under dotted keys.
-fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
+pub(crate) fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
     match v {
         Value::Number(n) => {
             if let Some(x) = n.as_f64() {

@@ -14,6 +14,8 @@ use crate::definition::verdict::Tally;
 /// One case's outcome.
 #[derive(Debug, Clone, Serialize)]
 pub struct CaseResult {
+    /// The code its checks were evaluated on (`impact`, or another code's name: issue 38).
+    pub code: String,
     pub suite: String,
     pub case: String,
     pub id: String,
@@ -62,6 +64,13 @@ pub struct Counts {
     pub known_fail: usize,
     pub xpass: usize,
     pub unexpected: usize,
+    /// Checks another code cannot express or did not produce (absent on `impact`'s counts).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub not_expressible: usize,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 impl Counts {
@@ -73,12 +82,30 @@ impl Counts {
             known_fail: t.known_fail,
             xpass: t.xpass,
             unexpected: t.unexpected(),
+            not_expressible: t.not_expressible,
         }
     }
 }
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Matrix {
+    /// The counts of `impact`'s rows.
+    pub counts: Counts,
+    /// `impact`'s rows.
+    pub cases: Vec<CaseResult>,
+    /// The rows of the other codes the run verified (`impact verify --code NAME`,
+    /// `--results-from DIR`), code by code in the order given: the same cases' checks,
+    /// references and tolerances evaluated on each code's results.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub codes: Vec<CodeMatrix>,
+}
+
+/// Another code's rows of the matrix.
+#[derive(Debug, Clone, Serialize)]
+pub struct CodeMatrix {
+    pub code: String,
+    /// What the code is (its adapter's description).
+    pub description: String,
     pub counts: Counts,
     pub cases: Vec<CaseResult>,
 }
@@ -88,6 +115,8 @@ pub struct Outcome {
     pub matrix: Matrix,
     /// (suite, case) -> scene -> result.
     pub data: BTreeMap<(String, String), BTreeMap<String, JobResult>>,
+    /// The same for each other code, by its name.
+    pub code_data: Vec<(String, BTreeMap<(String, String), BTreeMap<String, JobResult>>)>,
 }
 
 impl Matrix {
@@ -96,13 +125,26 @@ impl Matrix {
             .iter()
             .flat_map(|c| c.checks.iter().map(move |k| (c, k)))
     }
-    /// The verdicts of all checks (known failures and unexpected passes apart).
+    /// The verdicts of `impact`'s checks (known failures and unexpected passes apart).
     pub fn tally(&self) -> Tally {
         Tally::of(self.all_checks().map(|(_, k)| k))
     }
-    /// 0 when every failing check is a declared known failure and none passes unexpectedly,
-    /// 1 otherwise (issue 10, section 3).
+    /// The verdicts of every code's checks.
+    pub fn tally_all(&self) -> Tally {
+        let other = self.codes.iter().flat_map(|c| c.cases.iter());
+        Tally::of(self.cases.iter().chain(other).flat_map(|c| c.checks.iter()))
+    }
+    /// Every code's rows, `impact`'s first.
+    pub fn all_codes_checks(&self) -> impl Iterator<Item = (&CaseResult, &CheckResult)> {
+        let other = self.codes.iter().flat_map(|c| c.cases.iter());
+        self.cases
+            .iter()
+            .chain(other)
+            .flat_map(|c| c.checks.iter().map(move |k| (c, k)))
+    }
+    /// 0 when every failing check of every code is a declared known failure and none passes
+    /// unexpectedly, 1 otherwise (issue 10, section 3).
     pub fn exit_status(&self) -> u8 {
-        self.tally().exit_status()
+        self.tally_all().exit_status()
     }
 }

@@ -12,20 +12,25 @@ use crate::run::matrix::{Matrix, Outcome};
 /// The one-line total: `verify: 2 cases, 5 checks: 4 OK, 1 FAIL* (exit 0, 3.2 s)`.
 pub fn total_line(m: &Matrix, seconds: f64) -> String {
     let t = m.tally();
-    let n_checks = t.ok + t.known_fail + t.fail + t.xpass + t.skip;
-    format!(
-        "verify: {} case{}, {n_checks} check{}: {} (exit {}, {seconds:.1} s)",
+    let n_checks = t.total();
+    let mut line = format!(
+        "verify: {} case{}, {n_checks} check{}: {}",
         m.cases.len(),
         if m.cases.len() == 1 { "" } else { "s" },
         if n_checks == 1 { "" } else { "s" },
         t.short(),
-        t.exit_status()
-    )
+    );
+    for c in &m.codes {
+        let t = Tally::of(c.cases.iter().flat_map(|r| r.checks.iter()));
+        line.push_str(&format!("; {}: {} cases, {}", c.code, c.cases.len(), t.short()));
+    }
+    line + &format!(" (exit {}, {seconds:.1} s)", m.exit_status())
 }
 
-/// The matrix as text: one row per check.
+/// The matrix as text: one row per check (with the code first when other codes ran).
 pub fn matrix_text(m: &Matrix) -> String {
     let mut rows = vec![[
+        "code".to_string(),
         "suite".to_string(),
         "case".into(),
         "check".into(),
@@ -35,9 +40,10 @@ pub fn matrix_text(m: &Matrix) -> String {
         "error (one-sided: margin)".into(),
         "tolerance".into(),
     ]];
-    for (c, k) in m.all_checks() {
+    for (c, k) in m.all_codes_checks() {
         let row = crate::definition::check_row::CheckRow::of(k);
         rows.push([
+            c.code.clone(),
             c.suite.clone(),
             c.case.clone(),
             k.id.clone(),
@@ -48,18 +54,20 @@ pub fn matrix_text(m: &Matrix) -> String {
             row.tolerance,
         ]);
     }
-    let mut widths = [0usize; 8];
+    let mut widths = [0usize; 9];
     for r in &rows {
         for (w, s) in widths.iter_mut().zip(r) {
             *w = (*w).max(s.chars().count());
         }
     }
+    // The code column only when another code ran (impact's own matrix.txt is as it was).
+    let first = usize::from(m.codes.is_empty());
     let mut out = String::new();
     for r in &rows {
-        let line: Vec<String> = r
+        let line: Vec<String> = r[first..]
             .iter()
-            .zip(widths)
-            .map(|(s, w)| format!("{s:<w$}"))
+            .zip(&widths[first..])
+            .map(|(s, &w)| format!("{s:<w$}"))
             .collect();
         out.push_str(line.join("  ").trim_end());
         out.push('\n');
@@ -70,9 +78,13 @@ pub fn matrix_text(m: &Matrix) -> String {
 /// Per-suite counts (known failures and unexpected passes apart), the total line, and the
 /// list of non-OK checks with their messages.
 pub fn summary_text(m: &Matrix) -> String {
-    let mut per: BTreeMap<&str, Tally> = BTreeMap::new();
-    for (c, k) in m.all_checks() {
-        per.entry(&c.suite).or_default().add(Verdict::of_check(k));
+    let mut per: BTreeMap<String, Tally> = BTreeMap::new();
+    for (c, k) in m.all_codes_checks() {
+        let name = match c.code.as_str() {
+            "impact" => c.suite.clone(),
+            code => format!("{code}:{}", c.suite),
+        };
+        per.entry(name).or_default().add(Verdict::of_check(k));
     }
     let row = |name: &str, t: &Tally| {
         format!(
@@ -84,7 +96,7 @@ pub fn summary_text(m: &Matrix) -> String {
     for (s, t) in &per {
         out.push_str(&row(s, t));
     }
-    let total = m.tally();
+    let total = m.tally_all();
     out.push_str(&row("total", &total));
     out.push_str(&format!(
         "matrix: {} ({} unexpected: {})\n",
@@ -97,7 +109,7 @@ pub fn summary_text(m: &Matrix) -> String {
         }
     ));
     let notes: Vec<String> = m
-        .all_checks()
+        .all_codes_checks()
         .filter(|(_, k)| Verdict::of_check(k) != Verdict::Ok)
         .map(|(c, k)| {
             let v = Verdict::of_check(k);
@@ -111,8 +123,12 @@ pub fn summary_text(m: &Matrix) -> String {
             } else {
                 k.message.clone()
             };
+            let code = match c.code.as_str() {
+                "impact" => String::new(),
+                code => format!("{code}:"),
+            };
             format!(
-                "  {} {}/{}/{}: {message}{known}",
+                "  {} {code}{}/{}/{}: {message}{known}",
                 v.label(),
                 c.suite,
                 c.case,
@@ -132,8 +148,13 @@ pub fn summary_text(m: &Matrix) -> String {
 pub fn junit_xml(m: &Matrix) -> Result<String, String> {
     use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
     let mut report = Report::new("impact-verify");
-    for c in &m.cases {
-        let mut suite = TestSuite::new(format!("{}/{}", c.suite, c.case));
+    let other = m.codes.iter().flat_map(|code| code.cases.iter());
+    for c in m.cases.iter().chain(other) {
+        let prefix = match c.code.as_str() {
+            "impact" => String::new(),
+            code => format!("{code}:"),
+        };
+        let mut suite = TestSuite::new(format!("{prefix}{}/{}", c.suite, c.case));
         for k in &c.checks {
             let row = crate::definition::check_row::CheckRow::of(k);
             let detail = format!(
@@ -159,14 +180,14 @@ pub fn junit_xml(m: &Matrix) -> Result<String, String> {
                     s.set_description(detail.clone());
                     s
                 }
-                Status::Skip => {
+                Status::Skip | Status::NotExpressible => {
                     let mut s = TestCaseStatus::skipped();
-                    s.set_message(k.message.clone());
+                    s.set_message(format!("{}: {}", k.status.name(), k.message));
                     s
                 }
             };
             let mut tc = TestCase::new(k.id.clone(), status);
-            tc.set_classname(format!("{}.{}", c.suite, c.case));
+            tc.set_classname(format!("{}{}.{}", prefix.replace(':', "."), c.suite, c.case));
             tc.set_system_out(detail);
             suite.add_test_case(tc);
         }
@@ -192,7 +213,22 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
     if runs.exists() {
         std::fs::remove_dir_all(&runs)?;
     }
-    for ((suite, case), results) in &outcome.data {
+    write_runs(&outcome.data, &runs)?;
+    let codes = out.join("codes");
+    if codes.exists() {
+        std::fs::remove_dir_all(&codes)?;
+    }
+    for (code, data) in &outcome.code_data {
+        write_runs(data, &codes.join(code).join("runs"))?;
+    }
+    Ok(())
+}
+
+type RunsByCase = BTreeMap<(String, String), BTreeMap<String, crate::definition::run_data::JobResult>>;
+
+/// Each run's history.csv, summary.json and kept files under `runs/<suite>/<case>/<scene>/`.
+fn write_runs(data: &RunsByCase, runs: &Path) -> std::io::Result<()> {
+    for ((suite, case), results) in data {
         for (scene, r) in results {
             let Ok(d) = r else { continue };
             let dir = runs.join(suite).join(case).join(scene);
@@ -209,6 +245,9 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
             if let Some(s) = &d.summary {
                 let text = serde_json::to_string_pretty(s).map_err(std::io::Error::other)?;
                 std::fs::write(dir.join("summary.json"), text + "\n")?;
+            }
+            for (name, bytes) in &d.files {
+                std::fs::write(dir.join(name), bytes)?;
             }
         }
     }

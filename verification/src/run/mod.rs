@@ -14,6 +14,7 @@ pub mod job_loop;
 pub mod jobs;
 pub mod matrix;
 pub mod matrix_files;
+pub mod other_code;
 pub mod plan;
 pub mod rigid_plastic;
 pub mod runner;

@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::codes::Code;
 use crate::definition::broken::Broken;
 use crate::definition::case::Case;
 use crate::definition::repo::Repo;
@@ -21,14 +22,19 @@ pub struct Options {
 }
 
 fn selected(case: &Case, opts: &Options) -> bool {
+    selected_by(case, opts, &opts.selectors)
+}
+
+/// Whether `case` is selected by `selectors` (empty: all) and the heavy setting of `opts`.
+fn selected_by(case: &Case, opts: &Options, selectors: &[String]) -> bool {
     if case.file.heavy && !opts.include_heavy {
         return false;
     }
-    if opts.selectors.is_empty() {
+    if selectors.is_empty() {
         return true;
     }
     let full = format!("{}/{}", case.suite, case.name);
-    opts.selectors
+    selectors
         .iter()
         .any(|s| s == &case.suite || s == case.id() || s == &case.name || *s == full)
 }
@@ -74,6 +80,8 @@ pub struct Loaded {
 /// The selected cases and their jobs, deduplicated by content (what a run or a shard of it
 /// executes; `crate::run::shard` shares `jobs` out by cost).
 pub struct Plan<'a> {
+    /// The code that runs the scene jobs (builtins always run in-process).
+    pub code: Code,
     pub cases: Vec<&'a Case>,
     /// The selected broken cases (no jobs; a FAIL row each).
     pub broken: Vec<&'a Broken>,
@@ -82,17 +90,69 @@ pub struct Plan<'a> {
     pub(super) case_jobs: Vec<BTreeMap<String, Result<usize, String>>>,
 }
 
-/// Selects the cases of `opts` and makes their jobs. Errors: no case matches.
+impl Plan<'_> {
+    /// Runs job `i` on the plan's code: `impact` runs every job in-process; another code
+    /// runs the scenes (through its adapter, or read from its folder), not the scenes whose
+    /// point is `impact`'s input validation (`expect_error`), and builtins in-process.
+    pub fn run_job(&self, i: usize) -> crate::definition::run_data::JobResult {
+        use std::sync::Arc;
+        let job = &self.jobs[i];
+        let Job::Scene { scene, expect_error, .. } = job else {
+            return job.run();
+        };
+        match &self.code {
+            Code::Impact => job.run(),
+            _ if !expect_error.is_empty() => Err(format!(
+                "{}the scene checks impact's own input validation",
+                crate::codes::NOT_EXPRESSIBLE
+            )),
+            Code::Adapter(a) => a.run(scene).map(Arc::new),
+            Code::ResultsFrom(dir) => {
+                crate::codes::results_from::read(dir, &self.names_of(i), scene).map(Arc::new)
+            }
+        }
+    }
+
+    /// Every (suite, case, scene) that uses job `i`.
+    pub fn names_of(&self, i: usize) -> Vec<(String, String, String)> {
+        self.cases
+            .iter()
+            .zip(&self.case_jobs)
+            .flat_map(|(case, jobs_of)| {
+                jobs_of
+                    .iter()
+                    .filter(move |(_, j)| matches!(j, Ok(j) if *j == i))
+                    .map(move |(scene, _)| (case.suite.clone(), case.name.clone(), scene.clone()))
+            })
+            .collect()
+    }
+}
+
+/// Selects the cases of `opts` and makes their jobs, for `impact`. Errors: no case matches.
 pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<String>> {
+    plan_for(loaded, opts, Code::Impact)
+}
+
+/// [`plan`] for `code`: with no selector, an adapter's own `cases` (`light` with
+/// `--light`); another code runs no wrong models (they are `impact`'s evidence).
+pub fn plan_for<'a>(
+    loaded: &'a Loaded,
+    opts: &Options,
+    code: Code,
+) -> Result<Plan<'a>, Vec<String>> {
+    let selectors = match code.default_cases(!opts.include_heavy) {
+        Some(own) if opts.selectors.is_empty() => own,
+        _ => opts.selectors.clone(),
+    };
     let broken: Vec<&Broken> = loaded
         .broken
         .iter()
-        .filter(|b| broken_selected(b, opts))
+        .filter(|b| code.is_impact() && broken_selected(b, opts))
         .collect();
     let chosen: Vec<&Case> = loaded
         .cases
         .iter()
-        .filter(|c| selected(c, opts))
+        .filter(|c| selected_by(c, opts, &selectors))
         .filter(|c| {
             c.file
                 .checks
@@ -103,7 +163,7 @@ pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<Stri
     if chosen.is_empty() && broken.is_empty() {
         return Err(vec![format!(
             "no case matches {:?}{}",
-            opts.selectors,
+            selectors,
             opts.filter
                 .as_ref()
                 .map(|f| format!(" with filter {f:?}"))
@@ -120,11 +180,13 @@ pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<Stri
         let mut map = BTreeMap::new();
         if !case_skipped {
             let all = jobs::case_jobs(case).and_then(|mut js| {
-                js.extend(crate::run::discriminate::jobs(
-                    case,
-                    &js,
-                    opts.include_heavy,
-                )?);
+                if code.is_impact() {
+                    js.extend(crate::run::discriminate::jobs(
+                        case,
+                        &js,
+                        opts.include_heavy,
+                    )?);
+                }
                 Ok(js)
             });
             match all {
@@ -146,6 +208,7 @@ pub fn plan<'a>(loaded: &'a Loaded, opts: &Options) -> Result<Plan<'a>, Vec<Stri
         case_jobs.push(map);
     }
     Ok(Plan {
+        code,
         cases: chosen,
         broken,
         jobs: unique,

@@ -14,33 +14,82 @@ pub use crate::run::matrix::{CaseResult, Counts, Matrix, Outcome, SeriesData};
 pub use crate::run::matrix_files::{
     junit_xml, matrix_text, summary_text, total_line, write_outputs,
 };
-pub use crate::run::plan::{load, plan, Loaded, Options, Plan};
+pub use crate::run::plan::{load, plan, plan_for, Loaded, Options, Plan};
 
+use crate::codes::Code;
 use crate::definition::run_data::JobResult;
+use crate::run::matrix::CodeMatrix;
 use crate::run::{case_rows, job_loop};
 
 /// Runs the selected cases, announcing each as it finishes with its checks' verdicts, then
 /// the total. Errors: cases that do not load or do not lint.
 pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
+    verify_codes(repo, opts, &[Code::Impact])
+}
+
+/// [`verify`] on each of `codes` in turn (issue 38): the same cases' checks, references and
+/// tolerances evaluated on each code's results; `impact`'s rows are the matrix's own (none
+/// when it is not among the codes), the others' rows follow code by code.
+pub fn verify_codes(repo: &Repo, opts: &Options, codes: &[Code]) -> Result<Outcome, Vec<String>> {
     let started = std::time::Instant::now();
     let loaded = load(repo)?;
-    let plan = plan(&loaded, opts)?;
+    let mut outcome = None;
+    let mut others = Vec::new();
+    for code in codes {
+        if codes.len() > 1 {
+            eprintln!("== {}: {}", code.name(), code.description());
+        }
+        let plan = plan_for(&loaded, opts, code.clone())?;
+        let o = run_plan(repo, &plan, opts)?;
+        match code {
+            Code::Impact => outcome = Some(o),
+            _ => others.push((code, o)),
+        }
+    }
+    let mut outcome = outcome.unwrap_or_else(|| Outcome {
+        matrix: Matrix {
+            counts: Counts::default(),
+            cases: Vec::new(),
+            codes: Vec::new(),
+        },
+        data: Default::default(),
+        code_data: Vec::new(),
+    });
+    for (code, o) in others {
+        outcome.matrix.codes.push(CodeMatrix {
+            code: code.name(),
+            description: code.description(),
+            counts: o.matrix.counts,
+            cases: o.matrix.cases,
+        });
+        outcome.code_data.push((code.name(), o.data));
+    }
+    eprintln!(
+        "{}",
+        total_line(&outcome.matrix, started.elapsed().as_secs_f64())
+    );
+    Ok(outcome)
+}
+
+/// The plan's jobs run and its cases judged.
+fn run_plan(repo: &Repo, plan: &Plan, opts: &Options) -> Result<Outcome, Vec<String>> {
     let all: Vec<usize> = (0..plan.jobs.len()).collect();
     let judge = Judge {
         repo,
         filter: &opts.filter,
     };
     let (finished, judged) =
-        job_loop::run_jobs(&plan, &all, opts.jobs, opts.progress, Some(&judge))
+        job_loop::run_jobs(plan, &all, opts.jobs, opts.progress, Some(&judge))
             .map_err(|e| vec![e])?;
     let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
     for (i, r) in finished {
         slots[i] = Some(r);
     }
-    let outcome = case_rows::assemble_judged(repo, &plan, slots, &opts.filter, judged);
-    eprintln!(
-        "{}",
-        total_line(&outcome.matrix, started.elapsed().as_secs_f64())
-    );
-    Ok(outcome)
+    Ok(case_rows::assemble_judged(
+        repo,
+        plan,
+        slots,
+        &opts.filter,
+        judged,
+    ))
 }

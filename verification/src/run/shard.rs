@@ -163,6 +163,7 @@ impl StoredRun {
             histories,
             info: self.info,
             summary: self.summary,
+            files: BTreeMap::new(),
         })
     }
 }

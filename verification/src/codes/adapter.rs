@@ -1,0 +1,180 @@
+//! Another code through its adapter (`adapters/<name>/adapter.yaml`, the contract in
+//! `adapters/README.md`): the scene written out as `scene.yaml` and `scene.json` into a
+//! scratch folder, the adapter run there with a time limit, and its `history.csv`,
+//! `summary.json` and `adapter.json` read back. Exit status 3 is *not expressible* (its last
+//! line of output names the feature); any other failure is one message naming the code, the
+//! scene, the status and the code's last lines. The scratch folder is removed whatever
+//! happens; the files worth keeping (the scene, the code's input, `adapter.json`) travel with
+//! the run into `codes/<name>/runs/`.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use impact_solver::Scene;
+use serde::Deserialize;
+
+use super::process::{self, Ended};
+use super::NOT_EXPRESSIBLE;
+use crate::definition::run_data::RunData;
+
+/// The exit status of an adapter that cannot express the scene.
+pub const EXIT_NOT_EXPRESSIBLE: i32 = 3;
+
+/// `adapter.yaml` as written.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AdapterFile {
+    name: String,
+    description: String,
+    /// The program and its first arguments, run from the adapter's folder.
+    command: Vec<String>,
+    /// s, per scene.
+    timeout_s: f64,
+    #[serde(default)]
+    cases: Vec<String>,
+    #[serde(default)]
+    light: Vec<String>,
+    /// A file beside it: `suite/case/check: reason` for the code's known failures.
+    #[serde(default)]
+    expected: Option<String>,
+}
+
+/// An adapter, loaded.
+#[derive(Debug, Clone)]
+pub struct Adapter {
+    pub name: String,
+    pub description: String,
+    pub dir: PathBuf,
+    pub command: Vec<String>,
+    pub timeout_s: f64,
+    pub cases: Vec<String>,
+    pub light: Vec<String>,
+    pub expected: BTreeMap<String, String>,
+}
+
+impl Adapter {
+    /// `<root>/adapters/<name>/adapter.yaml`; errors name the file, line and column.
+    pub fn load(root: &Path, name: &str) -> Result<Adapter, String> {
+        let dir = root.join("adapters").join(name);
+        let path = dir.join("adapter.yaml");
+        if !path.is_file() {
+            return Err(format!(
+                "--code {name}: no adapter {} (known: impact{})",
+                path.display(),
+                known(root).iter().map(|k| format!(", {k}")).collect::<String>()
+            ));
+        }
+        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let file: AdapterFile =
+            serde_saphyr::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+        if file.name != name {
+            return Err(format!("{}: name: {:?} is not the folder's name {name:?}", path.display(), file.name));
+        }
+        if !(file.timeout_s.is_finite() && file.timeout_s > 0.0) {
+            return Err(format!("{}: timeout_s: {} (allowed: a number of seconds > 0)", path.display(), file.timeout_s));
+        }
+        let expected = match &file.expected {
+            None => BTreeMap::new(),
+            Some(f) => {
+                let p = dir.join(f);
+                let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+                serde_saphyr::from_str::<Option<BTreeMap<String, String>>>(&text)
+                    .map_err(|e| format!("{}: {e}", p.display()))?
+                    .unwrap_or_default()
+            }
+        };
+        Ok(Adapter {
+            name: file.name,
+            description: file.description,
+            dir,
+            command: file.command,
+            timeout_s: file.timeout_s,
+            cases: file.cases,
+            light: file.light,
+            expected,
+        })
+    }
+
+    /// Runs `scene` through the adapter (see the module's documentation).
+    pub fn run(&self, scene: &Scene) -> Result<RunData, String> {
+        let scratch = Scratch::new(&self.name)?;
+        let dir = &scratch.0;
+        let yaml = dir.join("scene.yaml");
+        let json = serde_json::to_string_pretty(&scene.to_file_value()).map_err(|e| e.to_string())?;
+        std::fs::write(&yaml, scene.to_yaml()).map_err(|e| format!("{}: {e}", yaml.display()))?;
+        std::fs::write(dir.join("scene.json"), json + "\n").map_err(|e| e.to_string())?;
+        let log = dir.join("adapter.log");
+        let done = process::run(&self.command, &[&yaml, dir], &self.dir, &log, self.timeout_s, dir)?;
+        let source = scene.source.display();
+        let tail = done.tail.join(" | ");
+        match done.ended {
+            Ended::Exited(Some(0)) => {}
+            Ended::Exited(Some(EXIT_NOT_EXPRESSIBLE)) => {
+                let line = done.tail.last().cloned().unwrap_or_default();
+                let line = line.trim_start_matches("not expressible:").trim();
+                return Err(format!("{NOT_EXPRESSIBLE}{line}"));
+            }
+            Ended::Exited(status) => {
+                let status = status.map_or("killed by a signal".into(), |s| format!("exit {s}"));
+                return Err(format!("{} failed on {source} ({status}): {tail}", self.name));
+            }
+            Ended::TimedOut(limit) => {
+                return Err(format!("{} on {source}: killed after its time limit of {limit} s (adapter.yaml timeout_s): {tail}", self.name));
+            }
+            Ended::Interrupted => return Err(format!("{} on {source}: interrupted", self.name)),
+        }
+        let mut run = super::contract::read_run(dir, Some(scene))
+            .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
+        run.info.insert("adapter wall time".into(), format!("{:.2} s", done.wall_time_s));
+        run.files = kept_files(dir, &run);
+        Ok(run)
+    }
+}
+
+/// The files kept with the run: the scene, `adapter.json`, and the inputs it names.
+fn kept_files(dir: &Path, run: &RunData) -> BTreeMap<String, Vec<u8>> {
+    let mut names = vec!["scene.yaml".to_string(), "adapter.json".into(), "adapter.log".into()];
+    if let Some(inputs) = run.info.get("input") {
+        names.extend(inputs.split("; ").map(str::to_string));
+    }
+    names
+        .into_iter()
+        .filter(|n| !n.contains("..") && !n.starts_with('/'))
+        .filter_map(|n| std::fs::read(dir.join(&n)).ok().map(|b| (n, b)))
+        .collect()
+}
+
+/// The adapters under `<root>/adapters/` (folders with an `adapter.yaml`).
+pub fn known(root: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(root.join("adapters"))
+        .map(|d| {
+            d.flatten()
+                .filter(|e| e.path().join("adapter.yaml").is_file())
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+/// A scratch folder under the system's temporary folder, removed when dropped.
+struct Scratch(PathBuf);
+
+impl Scratch {
+    fn new(code: &str) -> Result<Scratch, String> {
+        static COUNT: AtomicU64 = AtomicU64::new(0);
+        let n = COUNT.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("impact-{code}-{}-{n}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        Ok(Scratch(dir))
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}

@@ -1,0 +1,122 @@
+//! The files of the adapter contract (`adapters/README.md`) read back into what a check
+//! reads ([`RunData`]): `history.csv` (a `time_s` column, then any of `impact simulate`'s
+//! columns), `summary.json` (an object of its keys; numbers under dotted names as the
+//! solver's own summary gives them) and, when present, `adapter.json` (the code, its version,
+//! the input it ran, times and the substitutions it made). A missing or malformed file is
+//! one message naming the file, and for the history its line and column.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use impact_solver::{History, Scene};
+use serde_json::Value;
+
+use crate::definition::run_data::RunData;
+
+/// The run written in `dir` for `scene` (the derived impact quantities of a checked run,
+/// e.g. `momentum_change_Ns`, are computed from the summary as for `impact`'s own runs).
+pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
+    let history = read_history(&dir.join("history.csv"))?;
+    let summary = read_json(&dir.join("summary.json"))?;
+    if !summary.is_object() {
+        return Err(format!(
+            "{}: expected a JSON object of summary keys",
+            dir.join("summary.json").display()
+        ));
+    }
+    let mut metrics = BTreeMap::new();
+    crate::run::jobs::flatten("", &summary, &mut metrics);
+    if let Some(scene) = scene {
+        derived_metrics(scene, &mut metrics);
+    }
+    let mut info = BTreeMap::new();
+    let adapter = dir.join("adapter.json");
+    if adapter.exists() {
+        let a = read_json(&adapter)?;
+        for key in ["code", "version", "substitutions", "input"] {
+            if let Some(v) = a.get(key) {
+                info.insert(key.to_string(), text_of(v));
+            }
+        }
+        for key in ["wall_time_s", "cpu_time_s", "n_elements", "n_steps"] {
+            if let Some(x) = a.get(key).and_then(Value::as_f64) {
+                info.insert(key.to_string(), format!("{x}"));
+            }
+        }
+    }
+    Ok(RunData {
+        metrics,
+        histories: BTreeMap::from([(String::new(), history)]),
+        info,
+        summary: Some(summary),
+        files: BTreeMap::new(),
+    })
+}
+
+/// A JSON value as one line: strings bare, lists joined by "; ".
+fn text_of(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Array(items) => items.iter().map(text_of).collect::<Vec<_>>().join("; "),
+        other => other.to_string(),
+    }
+}
+
+/// The impactor's momentum change, final momentum, initial kinetic energy and the
+/// discriminators of a rigid wall, from the summary's `impulse_Ns` and
+/// `final_impactor_velocity_mps` and the scene's mass and speed (as `impact`'s runs give them).
+fn derived_metrics(scene: &Scene, metrics: &mut BTreeMap<String, f64>) {
+    let Some((mass, v0)) = scene.impactor_motion() else {
+        return;
+    };
+    metrics.insert("initial_kinetic_J".into(), 0.5 * mass * v0 * v0);
+    let Some(&vf) = metrics.get("final_impactor_velocity_mps") else {
+        return;
+    };
+    metrics.insert("momentum_change_Ns".into(), mass * (v0 - vf));
+    metrics.insert("final_momentum_kgmps".into(), mass * vf);
+    if let Some(&impulse) = metrics.get("impulse_Ns") {
+        for (k, v) in crate::run::jobs::impact_discriminators(mass, v0, impulse, vf) {
+            metrics.insert(k.into(), v);
+        }
+    }
+}
+
+fn read_json(path: &Path) -> Result<Value, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// `history.csv`: a header with `time_s` first, then rows of numbers (line and column named
+/// for anything else).
+pub fn read_history(path: &Path) -> Result<History, String> {
+    let at = |line: u64, what: String| format!("{} line {line}: {what}", path.display());
+    let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let columns: Vec<String> = rd
+        .headers()
+        .map_err(|e| at(1, e.to_string()))?
+        .iter()
+        .map(|h| h.trim().to_string())
+        .collect();
+    if columns.first().map(String::as_str) != Some("time_s") {
+        return Err(at(1, format!("the first column must be time_s (found {:?})", columns.first())));
+    }
+    let mut values = Vec::new();
+    for (row, rec) in rd.records().enumerate() {
+        let line = row as u64 + 2;
+        let rec = rec.map_err(|e| at(line, e.to_string()))?;
+        if rec.len() != columns.len() {
+            return Err(at(line, format!("{} fields, the header has {}", rec.len(), columns.len())));
+        }
+        for (col, field) in rec.iter().enumerate() {
+            let x = field.trim().parse::<f64>().map_err(|_| {
+                at(line, format!("column {} ({}): {field:?} is not a number", col + 1, columns[col]))
+            })?;
+            values.push(x);
+        }
+    }
+    if values.is_empty() {
+        return Err(format!("{}: no rows", path.display()));
+    }
+    Ok(History { columns, values })
+}

@@ -1,0 +1,99 @@
+//! The codes a verify run evaluates its checks on (issue 38): `impact`, this project's
+//! solver, run in-process; another code through its adapter (`adapters/<name>/`, the
+//! contract in `adapters/README.md`); or results computed elsewhere and read from a folder
+//! (`--results-from DIR`). Each gives, per scene, what `impact simulate` gives: a history
+//! and a summary, in the same names and units.
+
+pub mod adapter;
+pub mod contract;
+pub mod process;
+pub mod results_from;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+pub use adapter::Adapter;
+
+/// The prefix of a run's error when the code cannot express the scene: its checks show
+/// *not expressible* (N/E), never FAIL or OK.
+pub const NOT_EXPRESSIBLE: &str = "not expressible: ";
+/// The prefix of a run's error when results read from a folder have none for the scene.
+pub const NOT_PRODUCED: &str = "not produced: ";
+
+/// Whether a run's error says the code cannot express the scene or did not produce it.
+pub fn is_not_expressible(error: &str) -> bool {
+    error.starts_with(NOT_EXPRESSIBLE) || error.starts_with(NOT_PRODUCED)
+}
+
+/// A code the matrix runs its cases on.
+#[derive(Debug, Clone)]
+pub enum Code {
+    /// This project's solver, in-process.
+    Impact,
+    /// Another code through its adapter.
+    Adapter(Adapter),
+    /// Histories and summaries someone computed, one folder per scene.
+    ResultsFrom(PathBuf),
+}
+
+impl Code {
+    /// The code named on the command line: `impact`, or an adapter under `<root>/adapters/`.
+    pub fn find(root: &Path, name: &str) -> Result<Code, String> {
+        if name == "impact" {
+            return Ok(Code::Impact);
+        }
+        Adapter::load(root, name).map(Code::Adapter)
+    }
+
+    /// `--results-from DIR`: refused when DIR is not a folder.
+    pub fn results_from(dir: &Path) -> Result<Code, String> {
+        if !dir.is_dir() {
+            return Err(format!(
+                "--results-from {}: not a folder (expected DIR/<suite>/<case>/<scene>/ with history.csv and summary.json, adapters/README.md)",
+                dir.display()
+            ));
+        }
+        Ok(Code::ResultsFrom(dir.to_path_buf()))
+    }
+
+    /// The name its rows carry (for `--results-from DIR`, DIR's own name).
+    pub fn name(&self) -> String {
+        match self {
+            Code::Impact => "impact".into(),
+            Code::Adapter(a) => a.name.clone(),
+            Code::ResultsFrom(dir) => dir
+                .file_name()
+                .map_or("results".into(), |n| n.to_string_lossy().into_owned()),
+        }
+    }
+
+    pub fn is_impact(&self) -> bool {
+        matches!(self, Code::Impact)
+    }
+
+    /// One line on what the code is, for the report.
+    pub fn description(&self) -> String {
+        match self {
+            Code::Impact => "this project's solver (in-process)".into(),
+            Code::Adapter(a) => a.description.clone(),
+            Code::ResultsFrom(dir) => format!("results read from {}", dir.display()),
+        }
+    }
+
+    /// The cases this code runs when no selector is given (`None`: all of them).
+    pub fn default_cases(&self, light: bool) -> Option<Vec<String>> {
+        match self {
+            Code::Adapter(a) => Some(if light { a.light.clone() } else { a.cases.clone() }),
+            Code::Impact | Code::ResultsFrom(_) => None,
+        }
+    }
+
+    /// This code's known failures, `suite/case/check` -> reason (the cases' own
+    /// `known_failure` declarations are `impact`'s).
+    pub fn expected(&self) -> BTreeMap<String, String> {
+        match self {
+            Code::Adapter(a) => a.expected.clone(),
+            Code::Impact | Code::ResultsFrom(_) => BTreeMap::new(),
+        }
+    }
+}

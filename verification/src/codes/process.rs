@@ -1,0 +1,147 @@
+//! An adapter's process: started in its own process group (so that a time limit or Ctrl-C
+//! reaches the code it starts, e.g. `ccx`, and not only the adapter), waited for in a bounded
+//! loop that polls the stop request every [`POLL`], and killed with its group past its time
+//! limit. Running groups and their scratch folders are registered, so that the command
+//! line's signal handler ([`stop_all`]) kills them and removes what they wrote.
+
+use std::collections::BTreeMap;
+use std::os::unix::process::CommandExt;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// How often the wait loop looks at the child and the stop request.
+pub const POLL: Duration = Duration::from_millis(50);
+
+/// The running adapters: process group id -> scratch folder.
+static RUNNING: Mutex<BTreeMap<i32, PathBuf>> = Mutex::new(BTreeMap::new());
+
+/// How a process ended.
+#[derive(Debug)]
+pub enum Ended {
+    /// It exited with this status (`None`: killed by a signal).
+    Exited(Option<i32>),
+    /// Killed past the time limit (s).
+    TimedOut(f64),
+    /// Killed on a stop request (Ctrl-C).
+    Interrupted,
+}
+
+/// What the process wrote and how it ended.
+#[derive(Debug)]
+pub struct Finished {
+    pub ended: Ended,
+    /// Its standard output and error (merged in `log`), the last lines.
+    pub tail: Vec<String>,
+    pub wall_time_s: f64,
+}
+
+/// Runs `program args` in `cwd`, its output to `log`, in its own process group; `scratch`
+/// is the folder it writes (removed by [`stop_all`] if the command line is stopped).
+pub fn run(
+    program: &[String],
+    args: &[&Path],
+    cwd: &Path,
+    log: &Path,
+    timeout_s: f64,
+    scratch: &Path,
+) -> Result<Finished, String> {
+    let (first, rest) = program.split_first().ok_or("the adapter's command is empty")?;
+    let out = std::fs::File::create(log).map_err(|e| format!("{}: {e}", log.display()))?;
+    let err = out.try_clone().map_err(|e| e.to_string())?;
+    let started = Instant::now();
+    let mut child = Command::new(first)
+        .args(rest)
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::null())
+        .stdout(out)
+        .stderr(err)
+        .process_group(0)
+        .spawn()
+        .map_err(|e| format!("cannot start {first:?} in {}: {e}", cwd.display()))?;
+    let group = child.id() as i32;
+    if let Ok(mut r) = RUNNING.lock() {
+        r.insert(group, scratch.to_path_buf());
+    }
+    let ended = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break Ended::Exited(status.code()),
+            Ok(None) => {}
+            Err(e) => break kill_with(group, &mut child, Err(e.to_string()))?,
+        }
+        if impact_solver::interrupt::stop_requested() {
+            break kill_with(group, &mut child, Ok(Ended::Interrupted))?;
+        }
+        let t = started.elapsed().as_secs_f64();
+        if t > timeout_s {
+            break kill_with(group, &mut child, Ok(Ended::TimedOut(timeout_s)))?;
+        }
+        std::thread::sleep(POLL);
+    };
+    if let Ok(mut r) = RUNNING.lock() {
+        r.remove(&group);
+    }
+    Ok(Finished {
+        ended,
+        tail: last_lines(log, 8),
+        wall_time_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// Kills the group (SIGTERM, then SIGKILL after a second), reaps the child, returns `how`.
+fn kill_with(
+    group: i32,
+    child: &mut std::process::Child,
+    how: Result<Ended, String>,
+) -> Result<Ended, String> {
+    terminate(group);
+    let _ = child.wait();
+    how
+}
+
+/// SIGTERM to the group; SIGKILL if it is still there after a second (bounded).
+fn terminate(group: i32) {
+    // SAFETY: kill(2) with a negative pid signals the process group; no memory is touched.
+    unsafe {
+        libc::kill(-group, libc::SIGTERM);
+    }
+    for _ in 0..20 {
+        // SAFETY: signal 0 only asks whether the group still exists.
+        if unsafe { libc::kill(-group, 0) } != 0 {
+            return;
+        }
+        std::thread::sleep(POLL);
+    }
+    // SAFETY: as above.
+    unsafe {
+        libc::kill(-group, libc::SIGKILL);
+    }
+}
+
+/// Kills every running adapter's group and removes its scratch folder: for the command
+/// line's signal handler, before it exits.
+pub fn stop_all() {
+    let running = match RUNNING.lock() {
+        Ok(mut r) => std::mem::take(&mut *r),
+        Err(_) => return,
+    };
+    for (group, scratch) in running {
+        terminate(group);
+        let _ = std::fs::remove_dir_all(scratch);
+    }
+}
+
+/// The last `n` non-empty lines of a text file (empty when unreadable).
+pub fn last_lines(path: &Path, n: usize) -> Vec<String> {
+    let text = std::fs::read(path).unwrap_or_default();
+    let text = String::from_utf8_lossy(&text);
+    let lines: Vec<String> = text
+        .lines()
+        .map(str::trim_end)
+        .filter(|l| !l.trim().is_empty())
+        .map(str::to_string)
+        .collect();
+    lines[lines.len().saturating_sub(n)..].to_vec()
+}

@@ -1,0 +1,82 @@
+//! A check's row on another code (issue 38): the same check, reference and tolerance, and
+//! three rules of its own. A check that measures `impact`'s own computation (a builtin: a
+//! kernel, a manufactured solution) is *not expressible* (N/E) on another code; so is one
+//! that reads a scene the code refused (its adapter's exit status 3, or no folder under
+//! `--results-from`), and one that reads a column or key the code did not write (*not
+//! produced*). The known failures are the code's own (its adapter's `expected`), never the
+//! case's, which are `impact`'s.
+
+use std::collections::BTreeMap;
+
+use crate::codes::is_not_expressible;
+use crate::definition::case::{Case, CheckFile, MeasureFile};
+use crate::definition::check::{CheckResult, Status};
+use crate::definition::run_data::JobResult;
+
+/// Rewrites `r` (check `k` of `case`, evaluated on `code`'s `results`) by the rules above;
+/// `expected`: the code's known failures, `suite/case/check` -> reason.
+pub fn judge(
+    r: &mut CheckResult,
+    k: &CheckFile,
+    case: &Case,
+    results: &BTreeMap<String, JobResult>,
+    code: &str,
+    expected: &BTreeMap<String, String>,
+) {
+    r.known_failure = expected
+        .get(&format!("{}/{}/{}", case.suite, case.name, k.id))
+        .cloned();
+    let default_scene = (case.file.scenes.len() == 1)
+        .then(|| case.file.scenes.keys().next().cloned())
+        .flatten();
+    let mut read = Vec::new();
+    scenes_read(&k.measure.value, default_scene.as_deref(), results, &mut read);
+    let why = read.iter().find_map(|name| {
+        if case.file.scenes.get(name).is_some_and(|s| s.value.builtin.is_some()) {
+            return Some(format!(
+                "not expressible: measures impact's own computation (builtin {name}), not a run of {code}"
+            ));
+        }
+        match results.get(name) {
+            Some(Err(e)) if is_not_expressible(e) => Some(e.clone()),
+            _ => None,
+        }
+    });
+    let not_produced = r.status == Status::Fail
+        && r.computed.is_none()
+        && ["no metric", "no history column", "has no history"]
+            .iter()
+            .any(|w| r.message.contains(w));
+    if let Some(why) = why {
+        not_expressible(r, why);
+    } else if not_produced {
+        let why = format!("not produced by {code}: {}", r.message);
+        not_expressible(r, why);
+    }
+}
+
+fn not_expressible(r: &mut CheckResult, why: String) {
+    r.status = Status::NotExpressible;
+    r.message = why;
+    r.computed = None;
+    r.error = None;
+}
+
+/// The scenes (and series levels) a measure reads.
+fn scenes_read(
+    m: &MeasureFile,
+    default_scene: Option<&str>,
+    results: &BTreeMap<String, JobResult>,
+    out: &mut Vec<String>,
+) {
+    if let Some(q) = m.series_quantity() {
+        let prefix = format!("{}@", q.series);
+        out.extend(results.keys().filter(|k| k.starts_with(&prefix)).cloned());
+    } else if let Some(children) = m.ratio.as_ref().or(m.band.as_ref()) {
+        for c in children {
+            scenes_read(c, default_scene, results, out);
+        }
+    } else if let Some(s) = m.scene.as_deref().or(default_scene) {
+        out.push(s.to_string());
+    }
+}
