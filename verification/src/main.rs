@@ -443,6 +443,10 @@ fn verify(
             };
         }
     };
+    if impact_solver::interrupt::stop_requested() {
+        eprintln!("interrupted: nothing written to {}", out.display());
+        return ExitCode::from(130);
+    }
     let outcome = match outcome {
         Ok(o) => o,
         Err(problems) => {

@@ -62,23 +62,36 @@ impl Adapter {
             return Err(format!(
                 "--code {name}: no adapter {} (known: impact{})",
                 path.display(),
-                known(root).iter().map(|k| format!(", {k}")).collect::<String>()
+                known(root)
+                    .iter()
+                    .map(|k| format!(", {k}"))
+                    .collect::<String>()
             ));
         }
-        let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         let file: AdapterFile =
             serde_saphyr::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         if file.name != name {
-            return Err(format!("{}: name: {:?} is not the folder's name {name:?}", path.display(), file.name));
+            return Err(format!(
+                "{}: name: {:?} is not the folder's name {name:?}",
+                path.display(),
+                file.name
+            ));
         }
         if !(file.timeout_s.is_finite() && file.timeout_s > 0.0) {
-            return Err(format!("{}: timeout_s: {} (allowed: a number of seconds > 0)", path.display(), file.timeout_s));
+            return Err(format!(
+                "{}: timeout_s: {} (allowed: a number of seconds > 0)",
+                path.display(),
+                file.timeout_s
+            ));
         }
         let expected = match &file.expected {
             None => BTreeMap::new(),
             Some(f) => {
                 let p = dir.join(f);
-                let text = std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
+                let text =
+                    std::fs::read_to_string(&p).map_err(|e| format!("{}: {e}", p.display()))?;
                 serde_saphyr::from_str::<Option<BTreeMap<String, String>>>(&text)
                     .map_err(|e| format!("{}: {e}", p.display()))?
                     .unwrap_or_default()
@@ -101,11 +114,19 @@ impl Adapter {
         let scratch = Scratch::new(&self.name)?;
         let dir = &scratch.0;
         let yaml = dir.join("scene.yaml");
-        let json = serde_json::to_string_pretty(&scene.to_file_value()).map_err(|e| e.to_string())?;
+        let json =
+            serde_json::to_string_pretty(&scene.to_file_value()).map_err(|e| e.to_string())?;
         std::fs::write(&yaml, scene.to_yaml()).map_err(|e| format!("{}: {e}", yaml.display()))?;
         std::fs::write(dir.join("scene.json"), json + "\n").map_err(|e| e.to_string())?;
         let log = dir.join("adapter.log");
-        let done = process::run(&self.command, &[&yaml, dir], &self.dir, &log, self.timeout_s, dir)?;
+        let done = process::run(
+            &self.command,
+            &[&yaml, dir],
+            &self.dir,
+            &log,
+            self.timeout_s,
+            dir,
+        )?;
         let source = scene.source.display();
         let tail = done.tail.join(" | ");
         match done.ended {
@@ -117,7 +138,10 @@ impl Adapter {
             }
             Ended::Exited(status) => {
                 let status = status.map_or("killed by a signal".into(), |s| format!("exit {s}"));
-                return Err(format!("{} failed on {source} ({status}): {tail}", self.name));
+                return Err(format!(
+                    "{} failed on {source} ({status}): {tail}",
+                    self.name
+                ));
             }
             Ended::TimedOut(limit) => {
                 return Err(format!("{} on {source}: killed after its time limit of {limit} s (adapter.yaml timeout_s): {tail}", self.name));
@@ -126,7 +150,10 @@ impl Adapter {
         }
         let mut run = super::contract::read_run(dir, Some(scene))
             .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
-        run.info.insert("adapter wall time".into(), format!("{:.2} s", done.wall_time_s));
+        run.info.insert(
+            "adapter wall time".into(),
+            format!("{:.2} s", done.wall_time_s),
+        );
         run.files = kept_files(dir, &run);
         Ok(run)
     }
@@ -134,7 +161,11 @@ impl Adapter {
 
 /// The files kept with the run: the scene, `adapter.json`, and the inputs it names.
 fn kept_files(dir: &Path, run: &RunData) -> BTreeMap<String, Vec<u8>> {
-    let mut names = vec!["scene.yaml".to_string(), "adapter.json".into(), "adapter.log".into()];
+    let mut names = vec![
+        "scene.yaml".to_string(),
+        "adapter.json".into(),
+        "adapter.log".into(),
+    ];
     if let Some(inputs) = run.info.get("input") {
         names.extend(inputs.split("; ").map(str::to_string));
     }

@@ -99,18 +99,34 @@ pub fn read_history(path: &Path) -> Result<History, String> {
         .map(|h| h.trim().to_string())
         .collect();
     if columns.first().map(String::as_str) != Some("time_s") {
-        return Err(at(1, format!("the first column must be time_s (found {:?})", columns.first())));
+        return Err(at(
+            1,
+            format!(
+                "the first column must be time_s (found {:?})",
+                columns.first()
+            ),
+        ));
     }
     let mut values = Vec::new();
     for (row, rec) in rd.records().enumerate() {
         let line = row as u64 + 2;
         let rec = rec.map_err(|e| at(line, e.to_string()))?;
         if rec.len() != columns.len() {
-            return Err(at(line, format!("{} fields, the header has {}", rec.len(), columns.len())));
+            return Err(at(
+                line,
+                format!("{} fields, the header has {}", rec.len(), columns.len()),
+            ));
         }
         for (col, field) in rec.iter().enumerate() {
             let x = field.trim().parse::<f64>().map_err(|_| {
-                at(line, format!("column {} ({}): {field:?} is not a number", col + 1, columns[col]))
+                at(
+                    line,
+                    format!(
+                        "column {} ({}): {field:?} is not a number",
+                        col + 1,
+                        columns[col]
+                    ),
+                )
             })?;
             values.push(x);
         }

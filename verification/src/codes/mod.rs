@@ -83,7 +83,11 @@ impl Code {
     /// The cases this code runs when no selector is given (`None`: all of them).
     pub fn default_cases(&self, light: bool) -> Option<Vec<String>> {
         match self {
-            Code::Adapter(a) => Some(if light { a.light.clone() } else { a.cases.clone() }),
+            Code::Adapter(a) => Some(if light {
+                a.light.clone()
+            } else {
+                a.cases.clone()
+            }),
             Code::Impact | Code::ResultsFrom(_) => None,
         }
     }

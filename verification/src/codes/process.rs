@@ -47,7 +47,9 @@ pub fn run(
     timeout_s: f64,
     scratch: &Path,
 ) -> Result<Finished, String> {
-    let (first, rest) = program.split_first().ok_or("the adapter's command is empty")?;
+    let (first, rest) = program
+        .split_first()
+        .ok_or("the adapter's command is empty")?;
     let out = std::fs::File::create(log).map_err(|e| format!("{}: {e}", log.display()))?;
     let err = out.try_clone().map_err(|e| e.to_string())?;
     let started = Instant::now();

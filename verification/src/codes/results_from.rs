@@ -12,7 +12,11 @@ use crate::definition::run_data::RunData;
 
 /// The run of the first of `names` (suite, case, scene: every case and scene that uses this
 /// job) that has a folder under `dir`.
-pub fn read(dir: &Path, names: &[(String, String, String)], scene: &Scene) -> Result<RunData, String> {
+pub fn read(
+    dir: &Path,
+    names: &[(String, String, String)],
+    scene: &Scene,
+) -> Result<RunData, String> {
     for (suite, case, name) in names {
         let folder = dir.join(suite).join(case).join(name);
         if folder.is_dir() {

@@ -80,7 +80,14 @@ pub(super) fn run_jobs(
     let announce = |c: usize| {
         let row = judge.map(|j| {
             let (results, setup_error) = case_runs(&plan.case_jobs[c], |i| slots[i].get().cloned());
-            case_result(j.repo, &plan.code, plan.cases[c], &results, setup_error, j.filter)
+            case_result(
+                j.repo,
+                &plan.code,
+                plan.cases[c],
+                &results,
+                setup_error,
+                j.filter,
+            )
         });
         let line = case_progress.line(c, row.as_ref().map(|r| Tally::of(&r.checks)).as_ref());
         if let Some(r) = row {

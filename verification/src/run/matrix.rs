@@ -116,7 +116,10 @@ pub struct Outcome {
     /// (suite, case) -> scene -> result.
     pub data: BTreeMap<(String, String), BTreeMap<String, JobResult>>,
     /// The same for each other code, by its name.
-    pub code_data: Vec<(String, BTreeMap<(String, String), BTreeMap<String, JobResult>>)>,
+    pub code_data: Vec<(
+        String,
+        BTreeMap<(String, String), BTreeMap<String, JobResult>>,
+    )>,
 }
 
 impl Matrix {

@@ -22,7 +22,9 @@ pub fn total_line(m: &Matrix, seconds: f64) -> String {
     );
     for c in &m.codes {
         let t = Tally::of(c.cases.iter().flat_map(|r| r.checks.iter()));
-        line.push_str(&format!("; {}: {} cases, {}", c.code, c.cases.len(), t.short()));
+        let n = c.cases.len();
+        let s = if n == 1 { "" } else { "s" };
+        line.push_str(&format!("; {}: {n} case{s}, {}", c.code, t.short()));
     }
     line + &format!(" (exit {}, {seconds:.1} s)", m.exit_status())
 }
@@ -86,13 +88,21 @@ pub fn summary_text(m: &Matrix) -> String {
         };
         per.entry(name).or_default().add(Verdict::of_check(k));
     }
+    // The N/E column only when another code ran (impact's own matrix.txt is as it was).
+    let with_ne = !m.codes.is_empty();
     let row = |name: &str, t: &Tally| {
+        let ne = if with_ne {
+            format!(" {:>5}", t.not_expressible)
+        } else {
+            String::new()
+        };
         format!(
-            "{name:<20} {:>4} {:>6} {:>5} {:>6} {:>5}\n",
+            "{name:<20} {:>4} {:>6} {:>5} {:>6} {:>5}{ne}\n",
             t.ok, t.known_fail, t.fail, t.xpass, t.skip
         )
     };
-    let mut out = String::from("\nsuite                 OK  FAIL*  FAIL  XPASS  SKIP\n");
+    let mut out = String::from("\nsuite                 OK  FAIL*  FAIL  XPASS  SKIP");
+    out.push_str(if with_ne { "    N/E\n" } else { "\n" });
     for (s, t) in &per {
         out.push_str(&row(s, t));
     }
@@ -187,7 +197,12 @@ pub fn junit_xml(m: &Matrix) -> Result<String, String> {
                 }
             };
             let mut tc = TestCase::new(k.id.clone(), status);
-            tc.set_classname(format!("{}{}.{}", prefix.replace(':', "."), c.suite, c.case));
+            tc.set_classname(format!(
+                "{}{}.{}",
+                prefix.replace(':', "."),
+                c.suite,
+                c.case
+            ));
             tc.set_system_out(detail);
             suite.add_test_case(tc);
         }
@@ -224,7 +239,8 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
-type RunsByCase = BTreeMap<(String, String), BTreeMap<String, crate::definition::run_data::JobResult>>;
+type RunsByCase =
+    BTreeMap<(String, String), BTreeMap<String, crate::definition::run_data::JobResult>>;
 
 /// Each run's history.csv, summary.json and kept files under `runs/<suite>/<case>/<scene>/`.
 fn write_runs(data: &RunsByCase, runs: &Path) -> std::io::Result<()> {

@@ -30,7 +30,12 @@ pub fn judge(
         .then(|| case.file.scenes.keys().next().cloned())
         .flatten();
     let mut read = Vec::new();
-    scenes_read(&k.measure.value, default_scene.as_deref(), results, &mut read);
+    scenes_read(
+        &k.measure.value,
+        default_scene.as_deref(),
+        results,
+        &mut read,
+    );
     let why = read.iter().find_map(|name| {
         if case.file.scenes.get(name).is_some_and(|s| s.value.builtin.is_some()) {
             return Some(format!(

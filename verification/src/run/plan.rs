@@ -97,7 +97,12 @@ impl Plan<'_> {
     pub fn run_job(&self, i: usize) -> crate::definition::run_data::JobResult {
         use std::sync::Arc;
         let job = &self.jobs[i];
-        let Job::Scene { scene, expect_error, .. } = job else {
+        let Job::Scene {
+            scene,
+            expect_error,
+            ..
+        } = job
+        else {
             return job.run();
         };
         match &self.code {

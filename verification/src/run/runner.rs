@@ -78,9 +78,8 @@ fn run_plan(repo: &Repo, plan: &Plan, opts: &Options) -> Result<Outcome, Vec<Str
         repo,
         filter: &opts.filter,
     };
-    let (finished, judged) =
-        job_loop::run_jobs(plan, &all, opts.jobs, opts.progress, Some(&judge))
-            .map_err(|e| vec![e])?;
+    let (finished, judged) = job_loop::run_jobs(plan, &all, opts.jobs, opts.progress, Some(&judge))
+        .map_err(|e| vec![e])?;
     let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
     for (i, r) in finished {
         slots[i] = Some(r);
