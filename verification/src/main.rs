@@ -330,7 +330,7 @@ struct CodeArgs {
 
 impl CodeArgs {
     /// The codes named, each found (an adapter's folder, a results folder) before any run;
-    /// `impact` alone when none is named.
+    /// `impact` alone when none is named. With another code, Ctrl-C is handled here.
     fn resolve(self, root: &Path) -> Result<Vec<Code>, String> {
         let mut names = self.codes;
         if names.is_empty() && self.results_from.is_none() {
@@ -353,6 +353,15 @@ impl CodeArgs {
                 ));
             }
             codes.push(code);
+        }
+        if codes.iter().any(|c| !c.is_impact()) {
+            // Ctrl-C: the adapters' process groups (and the codes they started) are killed
+            // and their scratch folders removed before the exit; nothing of --out is written.
+            let _ = ctrlc::set_handler(|| {
+                impact_solver::interrupt::request_stop();
+                impact_verification::codes::process::stop_all();
+                std::process::exit(130);
+            });
         }
         Ok(codes)
     }
@@ -389,15 +398,6 @@ fn verify(
             return ExitCode::from(2);
         }
     };
-    if codes.iter().any(|c| !c.is_impact()) {
-        // Ctrl-C: the adapters' process groups (and the codes they started) are killed and
-        // their scratch folders removed before the exit; nothing of --out is written.
-        let _ = ctrlc::set_handler(|| {
-            impact_solver::interrupt::request_stop();
-            impact_verification::codes::process::stop_all();
-            std::process::exit(130);
-        });
-    }
     // Every input is checked before the first run: a baseline that is missing or malformed
     // is refused now, not after the whole matrix, and as `impact report --from` refuses it.
     if let Some(dir) = &baseline {

@@ -150,10 +150,10 @@ impl Adapter {
         }
         let mut run = super::contract::read_run(dir, Some(scene))
             .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
-        run.info.insert(
-            "adapter wall time".into(),
-            format!("{:.2} s", done.wall_time_s),
-        );
+        // The whole adapter's time (input, code, output) is the code's cost on this scene.
+        if let Some(c) = &mut run.cost {
+            c.wall_time_s = done.wall_time_s;
+        }
         run.files = kept_files(dir, &run);
         Ok(run)
     }

@@ -2,8 +2,9 @@
 //! reads ([`RunData`]): `history.csv` (a `time_s` column, then any of `impact simulate`'s
 //! columns), `summary.json` (an object of its keys; numbers under dotted names as the
 //! solver's own summary gives them) and, when present, `adapter.json` (the code, its version,
-//! the input it ran, times and the substitutions it made). A missing or malformed file is
-//! one message naming the file, and for the history its line and column.
+//! the input it ran, times and the substitutions it made; its times go to the run's cost,
+//! never to what results.json holds). A missing or malformed file is one message naming the
+//! file, and for the history its line and column.
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -25,22 +26,30 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
         ));
     }
     let mut metrics = BTreeMap::new();
-    crate::run::jobs::flatten("", &summary, &mut metrics);
+    crate::definition::run_data::flatten("", &summary, &mut metrics);
     if let Some(scene) = scene {
         derived_metrics(scene, &mut metrics);
     }
     let mut info = BTreeMap::new();
+    let mut cost = None;
     let adapter = dir.join("adapter.json");
     if adapter.exists() {
         let a = read_json(&adapter)?;
+        let number = |k: &str| a.get(k).and_then(Value::as_f64);
+        if let (Some(wall_time_s), Some(n_elements), Some(n_steps)) = (
+            number("wall_time_s"),
+            number("n_elements"),
+            number("n_steps"),
+        ) {
+            cost = Some(crate::definition::run_data::Cost {
+                wall_time_s,
+                n_elements,
+                n_steps,
+            });
+        }
         for key in ["code", "version", "substitutions", "input"] {
             if let Some(v) = a.get(key) {
                 info.insert(key.to_string(), text_of(v));
-            }
-        }
-        for key in ["wall_time_s", "cpu_time_s", "n_elements", "n_steps"] {
-            if let Some(x) = a.get(key).and_then(Value::as_f64) {
-                info.insert(key.to_string(), format!("{x}"));
             }
         }
     }
@@ -50,6 +59,7 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
         info,
         summary: Some(summary),
         files: BTreeMap::new(),
+        cost,
     })
 }
 
@@ -76,7 +86,7 @@ fn derived_metrics(scene: &Scene, metrics: &mut BTreeMap<String, f64>) {
     metrics.insert("momentum_change_Ns".into(), mass * (v0 - vf));
     metrics.insert("final_momentum_kgmps".into(), mass * vf);
     if let Some(&impulse) = metrics.get("impulse_Ns") {
-        for (k, v) in crate::run::jobs::impact_discriminators(mass, v0, impulse, vf) {
+        for (k, v) in crate::definition::run_data::impact_discriminators(mass, v0, impulse, vf) {
             metrics.insert(k.into(), v);
         }
     }

@@ -5,6 +5,7 @@
 pub mod bench_section;
 pub mod case_plots;
 pub mod changes_section;
+pub mod codes_section;
 pub mod evidence_section;
 pub mod html_tokens;
 pub mod markdown;

@@ -162,6 +162,7 @@ pub fn write_report_with(
         .find(|d| d.is_dir());
     let ctx = serde_json::json!({
         "evidence": evidence,
+        "codes": crate::report::codes_section::context(&results, from, &repo.root, out),
         "uq": crate::report::uq_section::context(uq_dir.as_deref(), out),
         "changes": crate::report::changes_section::context(from, out),
         "recon": recon,

@@ -16,7 +16,7 @@ use crate::definition::case::{Case, Loc, Refine, SceneSpec};
 pub use impact_solver::summary::TIMING_KEYS;
 
 pub use crate::definition::case::series_scene_name;
-pub use crate::definition::run_data::{JobResult, RunData};
+pub use crate::definition::run_data::{flatten, impact_discriminators, JobResult, RunData};
 
 /// A unit of work.
 #[derive(Debug, Clone)]
@@ -200,51 +200,12 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
         info: scene_info(scene, s),
         summary: Some(summary),
         files: BTreeMap::new(),
+        cost: Some(crate::definition::run_data::Cost {
+            wall_time_s: s.wall_time,
+            n_elements: s.n_elements as f64,
+            n_steps: s.n_steps as f64,
+        }),
     })
-}
-
-/// Quantities of an impact that a rigid wall (I = 2 m v0, v_f = -v0) gets wrong by all of
-/// themselves (issue 10): the restitution deficit `(2 m v0 - I) / (m v0)` (0 for a rigid
-/// wall, 1 for a fully plastic stop), and the energy the plate takes from the impactor,
-/// `m (v0^2 - v_f^2) / 2` in J (0 for a rigid wall). `v_f` is signed, positive toward the plate.
-pub fn impact_discriminators(
-    mass: f64,
-    v0: f64,
-    impulse: f64,
-    v_final: f64,
-) -> [(&'static str, f64); 2] {
-    [
-        (
-            "restitution_deficit",
-            (2.0 * mass * v0 - impulse) / (mass * v0),
-        ),
-        (
-            "plate_absorbed_energy_J",
-            0.5 * mass * (v0 * v0 - v_final * v_final),
-        ),
-    ]
-}
-
-/// Numeric leaves of a JSON value under dotted keys.
-pub(crate) fn flatten(prefix: &str, v: &Value, out: &mut BTreeMap<String, f64>) {
-    match v {
-        Value::Number(n) => {
-            if let Some(x) = n.as_f64() {
-                out.insert(prefix.to_string(), x);
-            }
-        }
-        Value::Object(m) => {
-            for (k, v) in m {
-                let key = if prefix.is_empty() {
-                    k.clone()
-                } else {
-                    format!("{prefix}.{k}")
-                };
-                flatten(&key, v, out);
-            }
-        }
-        _ => {}
-    }
 }
 
 /// The hardening as a scene writes it: `{linear: 4.14e9}` (Pa) or

@@ -236,7 +236,34 @@ pub fn write_outputs(outcome: &Outcome, out: &Path) -> std::io::Result<()> {
     for (code, data) in &outcome.code_data {
         write_runs(data, &codes.join(code).join("runs"))?;
     }
-    Ok(())
+    write_costs(outcome, &out.join(COSTS_FILE))
+}
+
+/// The machine-dependent file of each scene run's cost (results.json holds none).
+pub const COSTS_FILE: &str = "costs.json";
+
+/// `costs.json`: per code, case and scene, the run's wall time, elements, steps and ns per
+/// element-step (every code's runs on this machine, for the report's cost table).
+fn write_costs(outcome: &Outcome, path: &Path) -> std::io::Result<()> {
+    let impact = ("impact".to_string(), &outcome.data);
+    let all = std::iter::once(impact).chain(outcome.code_data.iter().map(|(c, d)| (c.clone(), d)));
+    let mut rows = Vec::new();
+    for (code, data) in all {
+        for ((suite, case), results) in data {
+            for (scene, r) in results {
+                let Some(cost) = r.as_ref().ok().and_then(|d| d.cost) else {
+                    continue;
+                };
+                rows.push(serde_json::json!({
+                    "code": code, "suite": suite, "case": case, "scene": scene,
+                    "wall_time_s": cost.wall_time_s, "n_elements": cost.n_elements,
+                    "n_steps": cost.n_steps, "ns_per_element_step": cost.ns_per_element_step(),
+                }));
+            }
+        }
+    }
+    let text = serde_json::to_string_pretty(&rows).map_err(std::io::Error::other)?;
+    std::fs::write(path, text + "\n")
 }
 
 type RunsByCase =

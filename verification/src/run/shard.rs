@@ -164,6 +164,7 @@ impl StoredRun {
             info: self.info,
             summary: self.summary,
             files: BTreeMap::new(),
+            cost: None,
         })
     }
 }
