@@ -374,6 +374,21 @@ enum Split {
     Merge(Vec<PathBuf>),
 }
 
+/// Every input of a verify checked before the first run: the codes found, and a baseline that
+/// is missing or malformed refused now, not after the whole matrix (as `impact report --from`
+/// refuses it).
+fn inputs_checked(
+    repo: &Repo,
+    code_args: CodeArgs,
+    baseline: Option<&Path>,
+) -> Result<Vec<Code>, String> {
+    if let Some(dir) = baseline {
+        impact_verification::report::results::read(&dir.join("results.json"))
+            .map_err(|e| format!("--baseline {}: {e:#}", dir.display()))?;
+    }
+    code_args.resolve(&repo.root)
+}
+
 #[allow(clippy::too_many_arguments)]
 fn verify(
     selectors: Vec<String>,
@@ -391,22 +406,13 @@ fn verify(
         Ok(r) => r,
         Err(c) => return c,
     };
-    let codes = match code_args.resolve(&repo.root) {
+    let codes = match inputs_checked(&repo, code_args, baseline.as_deref()) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
     };
-    // Every input is checked before the first run: a baseline that is missing or malformed
-    // is refused now, not after the whole matrix, and as `impact report --from` refuses it.
-    if let Some(dir) = &baseline {
-        let results = dir.join("results.json");
-        if let Err(e) = impact_verification::report::results::read(&results) {
-            eprintln!("error: --baseline {}: {e:#}", dir.display());
-            return ExitCode::from(2);
-        }
-    }
     let started = std::time::Instant::now();
     let jobs = jobs.map_or_else(
         || std::thread::available_parallelism().map_or(1, |n| n.get()),

@@ -47,7 +47,8 @@ fn mask_time(bytes: Vec<u8>) -> Vec<u8> {
 }
 
 /// What verify writes for `outcome` with its report, into the same folder every time (the
-/// report names its folder): every file (relative path, bytes), environment.json aside.
+/// report names its folder): every file (relative path, bytes), environment.json and
+/// costs.json aside.
 fn outputs(outcome: &runner::Outcome) -> Vec<(PathBuf, Vec<u8>)> {
     let dir = scratch("out");
     runner::write_outputs(outcome, &dir).unwrap();
@@ -57,7 +58,8 @@ fn outputs(outcome: &runner::Outcome) -> Vec<(PathBuf, Vec<u8>)> {
     all
 }
 
-/// Every file under `dir` (relative path, bytes), environment.json (wall time) aside.
+/// Every file under `dir` (relative path, bytes), environment.json and costs.json (wall
+/// times) aside.
 fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
     let mut out = Vec::new();
     let mut stack = vec![dir.to_path_buf()];
@@ -66,7 +68,10 @@ fn files(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
             let p = e.unwrap().path();
             if p.is_dir() {
                 stack.push(p);
-            } else if p.file_name().unwrap() != "environment.json" {
+            } else if !["environment.json", "costs.json"]
+                .iter()
+                .any(|n| p.file_name().unwrap() == *n)
+            {
                 let bytes = mask_time(std::fs::read(&p).unwrap());
                 out.push((p.strip_prefix(dir).unwrap().to_path_buf(), bytes));
             }

@@ -30,7 +30,7 @@ pub struct RunData {
 }
 
 /// A scene run's cost: wall-clock seconds over its elements and steps.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Cost {
     /// s, the whole run (an adapter's: writing the input, the code, reading the output).
     pub wall_time_s: f64,

@@ -46,6 +46,57 @@ pub fn case_plots(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<(Strin
     out
 }
 
+/// The ISO/TS 18571 rating of each history a case's `plots:` draw against each reference
+/// file drawn with it (the independent Python FE's, another code's published curve): one
+/// line each, "scene column against reference: 0.998 (excellent; corridor, phase,
+/// magnitude, slope)", the reference as the standard's reference curve.
+pub fn reference_ratings(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec<String> {
+    let dir = runs
+        .join(c["suite"].as_str().unwrap_or(""))
+        .join(c["case"].as_str().unwrap_or(""));
+    let mut out = Vec::new();
+    for p in c["plots"].as_array().into_iter().flatten() {
+        let Some(col) = p["column"].as_str() else {
+            continue;
+        };
+        for r in strings(&p["references"]) {
+            let path = match r.strip_prefix("reference-data/") {
+                Some(_) => root.join(r),
+                None => dir.join(r).join("history.csv"),
+            };
+            let Ok((ta, va)) = crate::definition::check::read_csv_columns(&path, col) else {
+                continue;
+            };
+            for s in strings(&p["scenes"]) {
+                let run = dir.join(s).join("history.csv");
+                let Ok((tb, vb)) = crate::definition::check::read_csv_columns(&run, col) else {
+                    continue;
+                };
+                let (lo, hi) = (ta[0].max(tb[0]), ta[ta.len() - 1].min(tb[tb.len() - 1]));
+                let grid: Vec<usize> = (0..ta.len())
+                    .filter(|&i| ta[i] >= lo && ta[i] <= hi)
+                    .collect();
+                let rated = crate::review::diff::rating_of(&ta, &va, &tb, &vb, &grid).map_or_else(
+                    || "not rated (too few common samples, or a flat curve)".to_string(),
+                    |x| {
+                        format!(
+                            "{:.3} ({}; corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3})",
+                            x.overall,
+                            crate::review::iso18571::Grade::of(x.overall).name(),
+                            x.corridor,
+                            x.phase,
+                            x.magnitude,
+                            x.slope
+                        )
+                    },
+                );
+                out.push(format!("{s} {col} against {r}: ISO/TS 18571 {rated}"));
+            }
+        }
+    }
+    out
+}
+
 fn strings(v: &serde_json::Value) -> Vec<&str> {
     v.as_array()
         .into_iter()

@@ -253,6 +253,7 @@ fn case_context(
         "references": refs, "modelling": modelling_rows(&c["modelling"]), "job_errors": job_errors,
         "checks": rows, "plots": plots.iter().map(|p| p.1.clone()).collect::<Vec<_>>(),
         "plot_files": plot_files,
+        "ratings": crate::report::case_plots::reference_ratings(c, runs, root),
     }))
 }
 

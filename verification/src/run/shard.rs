@@ -95,6 +95,9 @@ struct StoredRun {
     histories: BTreeMap<String, StoredHistory>,
     info: BTreeMap<String, String>,
     summary: Option<Value>,
+    /// The run's cost on the shard's machine (for costs.json).
+    #[serde(default)]
+    cost: Option<crate::definition::run_data::Cost>,
 }
 
 #[derive(Debug, Serialize, Deserialize)]
@@ -131,6 +134,7 @@ impl StoredRun {
                 .collect(),
             info: d.info.clone(),
             summary: d.summary.clone(),
+            cost: d.cost,
         }
     }
 
@@ -164,7 +168,7 @@ impl StoredRun {
             info: self.info,
             summary: self.summary,
             files: BTreeMap::new(),
-            cost: None,
+            cost: self.cost,
         })
     }
 }
