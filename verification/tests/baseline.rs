@@ -106,8 +106,8 @@ fn a_changed_scene_is_reported_check_by_check_against_the_baseline() {
         "the overlay is drawn"
     );
     assert!(
-        page.contains("(contact_force_N)") || page.contains("_J)"),
-        "{page}"
+        page.contains("(contact_force_N; ISO/TS 18571 ") || page.contains("_J; ISO/TS 18571 "),
+        "the moved column and its rating against the baseline: {page}"
     );
     // Each overlay is written once, beside the page that links it (the old report copied
     // them again into what-changed/what-changed/).

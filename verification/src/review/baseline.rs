@@ -56,7 +56,8 @@ pub struct CheckChange {
 #[derive(Debug, Clone, Default)]
 pub struct Changes {
     pub checks: Vec<CheckChange>,
-    /// Runs whose histories moved: (suite/case/scene/file, largest relative change, plot).
+    /// Runs whose histories moved: ("suite/case/scene/file (column; its ISO/TS 18571 rating
+    /// against the baseline)", largest relative change, plot).
     pub histories: Vec<(String, f64, Option<PathBuf>)>,
 }
 
@@ -217,7 +218,21 @@ fn moved_histories(baseline_dir: &Path, out: &Path) -> Result<Vec<(String, f64, 
         };
         let name = rel.display().to_string();
         let plot = overlay(&twin, &file, &worst.column, &name, &plots).ok();
-        moved.push((format!("{name} ({})", worst.column), worst.rel, plot));
+        let rated = worst.iso.as_ref().map_or_else(
+            || "not rated by ISO/TS 18571 (too few samples, or a flat curve)".to_string(),
+            |r| {
+                format!(
+                    "ISO/TS 18571 {:.3} ({}) against the baseline",
+                    r.overall,
+                    crate::review::iso18571::Grade::of(r.overall).name()
+                )
+            },
+        );
+        moved.push((
+            format!("{name} ({}; {rated})", worst.column),
+            worst.rel,
+            plot,
+        ));
     }
     Ok(moved)
 }
