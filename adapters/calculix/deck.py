@@ -1,0 +1,209 @@
+"""Write the ccx input deck (job.inp) for a scene. Lengths m, forces N, times s, Pa, kg/m^3.
+
+Plane strain: CPE4/CPE4R with the section thickness plate.width, so ccx's forces and energies
+are those of the whole width of the modelled part (times 2 for the half model's report).
+Axisymmetric: CAX4/CAX4R, whose loads and results are ccx's 2-degree segment (times 180 for
+the whole ring).
+"""
+
+import math
+
+ELEMENT = {  # (geometry, scene element) -> (ccx type, substitution or None)
+    ("plane-strain", "q4-full"): ("CPE4", None),
+    ("plane-strain", "q4-sri"): ("CPE4", "q4-sri -> CPE4 (2x2 full integration, no B-bar: ccx has no "
+                                 "selective reduced integration element; same deviatoric/shear "
+                                 "part, stiffer volumetric part, locks under plastic flow)"),
+    ("plane-strain", "q4-1pt"): ("CPE4R", "q4-1pt -> CPE4R (one point, ccx's own hourglass "
+                                 "control, not Flanagan-Belytschko with mesh.hourglass)"),
+    ("axisymmetric", "q4-full"): ("CAX4", None),
+    ("axisymmetric", "q4-sri"): ("CAX4", "q4-sri -> CAX4 (2x2 full integration, no B-bar/F-bar: "
+                                 "ccx has no selective reduced integration element; locks "
+                                 "under plastic flow)"),
+    ("axisymmetric", "q4-1pt"): ("CAX4R", "q4-1pt -> CAX4R (one point, ccx's own hourglass "
+                                 "control, not Flanagan-Belytschko with mesh.hourglass)"),
+}
+
+
+def report_factor(s):
+    """ccx's forces and energies times this are the scene's (whole plate, width or ring)."""
+    if s["geometry"] == "axisymmetric":
+        return 180.0
+    return 2.0 if s["mesh"]["model"] == "half" else 1.0
+
+
+def wave_speed(material):
+    """Plane-strain P-wave speed sqrt(E (1 - nu) / (rho (1 + nu)(1 - 2 nu))), m/s."""
+    e, nu, rho = (float(material[k]) for k in ("youngs_modulus", "poisson_ratio", "density"))
+    return math.sqrt(e * (1 - nu) / (rho * (1 + nu) * (1 - 2 * nu)))
+
+
+def time_step(s, mesh):
+    """The largest step given to ccx, s: time.dt.fixed, or cfl times the lumped bilinear
+    bound 1 / (c_P sqrt(1/dx^2 + 1/dy^2)) on the smallest element (ccx takes the smaller of
+    this and its own Courant estimate)."""
+    dt = s["time"]["dt"]
+    if dt.get("fixed") is not None:
+        return float(dt["fixed"])
+    dx, dy = mesh.smallest_sizes()
+    return float(dt["cfl"]) / (wave_speed(s["material"]) * math.sqrt(dx ** -2 + dy ** -2))
+
+
+def flow_curve(material):
+    """ccx *PLASTIC rows [(true stress Pa, equivalent plastic strain)], flat after the last."""
+    p = material["plasticity"]
+    kind, value = next(iter(p["hardening"].items()))
+    if kind == "table":
+        return [(float(sig), float(eps)) for eps, sig in value]
+    e, et, sy = float(material["youngs_modulus"]), float(value), float(p["yield_stress"])
+    h = e * et / (e - et)  # the plastic modulus of the uniaxial tangent modulus Et
+    return [(sy, 0.0), (sy + h * 10.0, 10.0)]
+
+
+def num(v):
+    """A number as ccx reads it: at most 20 characters a field (exact when it fits)."""
+    text = repr(float(v))
+    return text if len(text) <= 20 else f"{float(v):.14g}"
+
+
+def lines_of(values, per_line=8):
+    """Comma-separated data lines of at most per_line numbers (ccx reads up to 16); ints
+    (node and element numbers) as they are."""
+    text = lambda v: str(v) if isinstance(v, int) else num(v)
+    return [", ".join(text(v) for v in values[k:k + per_line])
+            for k in range(0, len(values), per_line)]
+
+
+def nodes_and_elements(s, mesh, ccx_type):
+    """*NODE and *ELEMENT blocks (ccx numbers = index + 1)."""
+    out = ["*NODE, NSET=NALL"]
+    for n in range((mesh.nx + 1) * (mesh.ny + 1)):
+        x, y = mesh.ccx_xy(n)
+        out.append(f"{n + 1}, {num(x)}, {num(y)}")
+    out.append(f"*ELEMENT, TYPE={ccx_type}, ELSET=EALL")
+    for e, c in mesh.elements():
+        out.append(f"{e + 1}, " + ", ".join(str(n + 1) for n in c))
+    return out
+
+
+def node_set(name, nodes):
+    """An *NSET of node indices."""
+    return [f"*NSET, NSET={name}"] + lines_of([n + 1 for n in nodes], 16)
+
+
+def material_block(s):
+    """*MATERIAL, *ELASTIC, *DENSITY, *PLASTIC and the *SOLID SECTION."""
+    m = s["material"]
+    out = ["*MATERIAL, NAME=PLATE", "*ELASTIC",
+           f"{num(float(m['youngs_modulus']))}, {num(float(m['poisson_ratio']))}",
+           "*DENSITY", f"{num(float(m['density']))}"]
+    if m.get("plasticity"):
+        out.append("*PLASTIC")
+        out += [f"{num(sig)}, {num(eps)}" for sig, eps in flow_curve(m)]
+    out.append("*SOLID SECTION, ELSET=EALL, MATERIAL=PLATE")
+    out.append("" if s["geometry"] == "axisymmetric" else f"{num(float(s['plate']['width']))}")
+    return out
+
+
+def boundary_block(s, mesh, foot):
+    """*BOUNDARY of the supports, the axis (u_r = 0) and, under the wall, the foot (u_y = 0)."""
+    held = mesh.supports()
+    for n in foot:
+        held.setdefault(n, set()).add(2)
+    out = ["*BOUNDARY"]
+    for n in sorted(held):
+        out += [f"{n + 1}, {d}, {d}, 0." for d in sorted(held[n])]
+    return out
+
+
+def rectangular_amplitude(duration, end, dt):
+    """*AMPLITUDE PULSE: 1 for 0 <= t < duration, 0 after (a ramp of dt/1000 at the end)."""
+    off = duration + 1e-3 * dt
+    pts = [0.0, 1.0, duration, 1.0, off, 0.0, max(end, off) * 2.0, 0.0]
+    return ["*AMPLITUDE, NAME=PULSE"] + lines_of(pts)
+
+
+def load_blocks(s, mesh, dt):
+    """(model-data lines, step lines) of the pulse, the traction or the wall."""
+    kind, load = s["load"]
+    factor = report_factor(s)
+    end = float(s["time"]["end"])
+    if kind == "pulse":
+        top = mesh.mid_span()["top"]
+        force = float(load["force"]) / factor
+        return (rectangular_amplitude(float(load["duration"]), end, dt),
+                ["*CLOAD, AMPLITUDE=PULSE", f"{top + 1}, 2, {num(-force)}"])
+    if kind == "traction":
+        width = float(s["plate"]["width"])
+        normal, shear = float(load.get("normal", 0.0)), float(load.get("shear", 0.0))
+        step = ["*CLOAD, AMPLITUDE=PULSE"]
+        for n, length in mesh.top_nodes_tributary():
+            if shear:
+                step.append(f"{n + 1}, 1, {num(shear * length * width)}")
+            if normal:
+                step.append(f"{n + 1}, 2, {num(-normal * length * width)}")
+        return rectangular_amplitude(float(load["duration"]), end, dt), step
+    if kind == "wall":
+        foot = set(mesh.bottom_nodes())
+        v = float(load["velocity"])
+        init = ["*INITIAL CONDITIONS, TYPE=VELOCITY"]
+        n_all = (mesh.nx + 1) * (mesh.ny + 1)
+        init += [f"{n + 1}, 2, {num(-v)}" for n in range(n_all) if n not in foot]
+        return init, []
+    raise ValueError(f"load {kind} reaches the deck writer")
+
+
+def time_points(s, dt):
+    """*TIME POINTS TP at k * output.every (or every step) up to time.end, s."""
+    end = float(s["time"]["end"])
+    every = s["output"].get("every") or dt
+    n = int(math.floor(end / every + 1e-9))
+    pts = [k * every for k in range(1, n + 1)]
+    if not pts or pts[-1] < end * (1 - 1e-12):
+        pts.append(end)
+    return ["*TIME POINTS, NAME=TP"] + lines_of(pts)
+
+
+def output_blocks(s, mesh, probe_elements, foot):
+    """*NODE PRINT / *EL PRINT requests, all at the time points TP."""
+    out = ["*NODE PRINT, NSET=NMID, TIME POINTS=TP", "U",
+           "*EL PRINT, ELSET=EALL, TOTALS=ONLY, TIME POINTS=TP", "ELSE, ELKE"]
+    if probe_elements:
+        out += ["*EL PRINT, ELSET=EPROBE, TIME POINTS=TP", "S"]
+    if foot:
+        out += ["*NODE PRINT, NSET=NFOOT, TOTALS=ONLY, TIME POINTS=TP", "RF",
+                "*NODE PRINT, NSET=NFOOT, TIME POINTS=TP", "U"]
+    return out
+
+
+def write(s, mesh, probes, path):
+    """Write the deck to path; returns {'ccx_type', 'substitutions', 'dt_max_s'}."""
+    ccx_type, substitution = ELEMENT[(s["geometry"], s["mesh"]["element"])]
+    dt = time_step(s, mesh)
+    end = float(s["time"]["end"])
+    kind = s["load"][0]
+    foot = sorted(mesh.bottom_nodes()) if kind == "wall" else []
+    model_data, step_loads = load_blocks(s, mesh, dt)
+    probe_elements = sorted({e for e, _ in probes.values()})
+    lines = ["*HEADING", f"impact scene {s.get('title') or ''} (written by adapters/calculix)"]
+    lines += nodes_and_elements(s, mesh, ccx_type)
+    lines += node_set("NMID", sorted(set(mesh.mid_span().values())))
+    if foot:
+        lines += node_set("NFOOT", foot)
+    if probe_elements:
+        lines += ["*ELSET, ELSET=EPROBE"] + lines_of([e + 1 for e in probe_elements], 16)
+    lines += material_block(s) + boundary_block(s, mesh, foot) + model_data
+    lines += time_points(s, dt)
+    nlgeom = ", NLGEOM" if s["kinematics"] == "finite" else ""
+    lines += [f"*STEP, INC=100000000{nlgeom}", "*DYNAMIC, EXPLICIT",
+              f"{num(dt)}, {num(end)}, {num(dt * 1e-6)}, {num(dt)}"]
+    lines += step_loads + output_blocks(s, mesh, probe_elements, foot) + ["*END STEP"]
+    with open(path, "w", encoding="ascii") as f:
+        f.write("\n".join(lines) + "\n")
+    subs = [substitution] if substitution else []
+    if kind == "wall":
+        subs.append("load.wall -> u_y = 0 held on the bottom face from t = 0 (*BOUNDARY) with "
+                    "the rest of the body at -V (*INITIAL CONDITIONS, TYPE=VELOCITY): the foot "
+                    "starts at rest (its momentum is not in the impulse), never leaves the "
+                    "wall, and side nodes that roll down are not stopped at y = 0; the wall "
+                    "force is the foot's reaction RF")
+    return {"ccx_type": ccx_type, "substitutions": subs, "dt_max_s": dt}

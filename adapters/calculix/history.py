@@ -1,0 +1,96 @@
+"""Turn ccx's printed blocks into impact's history columns (SI units, whole plate)."""
+
+import math
+
+from results import DatError, nodal, point_stress, series
+
+
+def von_mises(sxx, syy, szz, sxy):
+    """Von Mises stress of an in-plane state with the out-of-plane szz, Pa."""
+    return math.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
+                     + 3.0 * sxy ** 2)
+
+
+def load_force(s, t):
+    """The pulse's or traction's reported force at t (s), N: on for 0 <= t < duration."""
+    kind, load = s["load"]
+    if t >= float(load["duration"]):
+        return 0.0
+    if kind == "pulse":
+        return float(load["force"])
+    normal, shear = float(load.get("normal", 0.0)), float(load.get("shear", 0.0))
+    area = float(s["plate"]["length"]) * float(s["plate"]["width"])
+    return (normal if normal else shear) * area
+
+
+def columns(s, probes):
+    """The history header, in impact's column order."""
+    cols = ["time_s", "contact_force_N"]
+    if s["load"][0] == "wall":
+        cols += ["foot_radius_m", "bar_length_m"]
+    cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
+    for name in probes:
+        cols += [f"{name}_{c}" for c in ("sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa")]
+    cols.append("plate_kinetic_J")
+    if not s["material"].get("plasticity"):
+        cols.append("strain_energy_J")
+    return cols
+
+
+def initial_row(s, mesh, probes):
+    """The row at t = 0 (the state at rest, before ccx's first increment), or None under the
+    wall (the body starts moving: its t = 0 wall force is not a ccx output)."""
+    if s["load"][0] == "wall":
+        return None
+    row = {c: 0.0 for c in columns(s, probes)}
+    row["contact_force_N"] = load_force(s, 0.0)
+    return row
+
+
+def block_at(blocks, kind, name, k):
+    """The k-th block of a kind and set (time, rows)."""
+    data = series(blocks, kind, name)
+    if k >= len(data):
+        raise DatError(f"'{kind}' for set {name} stops after {len(data)} outputs")
+    return data[k]
+
+
+def row_at(s, mesh, probes, blocks, k, factor):
+    """The k-th ccx output as a history row {column: value}."""
+    t, rows = block_at(blocks, "U", "NMID", k)
+    u = nodal(rows)
+    mid = mesh.mid_span()
+    row = {"time_s": t}
+    for which in ("top", "mid", "bottom"):
+        row[f"{which}_uy_m"] = u[mid[which] + 1][1]
+    if s["load"][0] == "wall":
+        row["contact_force_N"] = block_at(blocks, "RF", "NFOOT", k)[1][0][1] * factor
+        foot = nodal(block_at(blocks, "U", "NFOOT", k)[1])
+        row["foot_radius_m"] = max(mesh.ccx_xy(n - 1)[0] + v[0] for n, v in foot.items())
+        row["bar_length_m"] = mesh.h + row["top_uy_m"]
+    else:
+        row["contact_force_N"] = load_force(s, t)
+    if probes:
+        stress_rows = block_at(blocks, "S", "EPROBE", k)[1]
+        for name, (e, p) in probes.items():
+            sxx, syy, szz, sxy = point_stress(stress_rows, e + 1, p)
+            if mesh.axisymmetric:
+                sxy = -sxy  # the solver's x runs against the radius
+            row.update({f"{name}_sxx_Pa": sxx, f"{name}_syy_Pa": syy, f"{name}_sxy_Pa": sxy,
+                        f"{name}_szz_Pa": szz,
+                        f"{name}_von_mises_Pa": von_mises(sxx, syy, szz, sxy)})
+    row["plate_kinetic_J"] = block_at(blocks, "ELKE", "EALL", k)[1][0][0] * factor
+    if not s["material"].get("plasticity"):
+        row["strain_energy_J"] = block_at(blocks, "ELSE", "EALL", k)[1][0][0] * factor
+    return row
+
+
+def build(s, mesh, probes, blocks, factor, end):
+    """All history rows; DatError when ccx's output stops before time.end."""
+    n = len(series(blocks, "U", "NMID"))
+    rows = [row_at(s, mesh, probes, blocks, k, factor) for k in range(n)]
+    if not rows or rows[-1]["time_s"] < end * (1 - 1e-6):
+        last = rows[-1]["time_s"] if rows else 0.0
+        raise DatError(f"job.dat ends at t = {last:.6g} s, before time.end = {end:.6g} s")
+    first = initial_row(s, mesh, probes)
+    return ([first] if first else []) + rows
