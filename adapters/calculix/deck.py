@@ -152,34 +152,38 @@ def load_blocks(s, mesh, dt):
     raise ValueError(f"load {kind} reaches the deck writer")
 
 
-def time_points(s, dt):
-    """*TIME POINTS TP at k * output.every (or every step) up to time.end, s."""
-    end = float(s["time"]["end"])
-    every = s["output"].get("every") or dt
-    n = int(math.floor(end / every + 1e-9))
-    pts = [k * every for k in range(1, n + 1)]
-    if not pts or pts[-1] < end * (1 - 1e-12):
-        pts.append(end)
-    return ["*TIME POINTS, NAME=TP"] + lines_of(pts)
+def output_step(s, dt_limit):
+    """(step s, rows every N steps): the largest step <= dt_limit (s) that divides
+    output.every, so the rows fall on k * every as the solver's; every step without every."""
+    every = s["output"].get("every")
+    if not every:
+        return dt_limit, 1
+    n = max(1, math.ceil(float(every) / dt_limit - 1e-9))
+    return float(every) / n, n
 
 
-def output_blocks(s, mesh, probe_elements, foot):
-    """*NODE PRINT / *EL PRINT requests, all at the time points TP."""
-    out = ["*NODE PRINT, NSET=NMID, TIME POINTS=TP", "U",
-           "*EL PRINT, ELSET=EALL, TOTALS=ONLY, TIME POINTS=TP", "ELSE, ELKE"]
+def output_blocks(probe_elements, foot, every):
+    """*NODE PRINT / *EL PRINT requests, every `every` increments (none when 0: the probe
+    run that reads ccx's step)."""
+    if not every:
+        return []
+    f = f"FREQUENCY={every}"
+    out = [f"*NODE PRINT, NSET=NMID, {f}", "U",
+           f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, {f}", "ELSE, ELKE"]
     if probe_elements:
-        out += ["*EL PRINT, ELSET=EPROBE, TIME POINTS=TP", "S"]
+        out += [f"*EL PRINT, ELSET=EPROBE, {f}", "S"]
     if foot:
-        out += ["*NODE PRINT, NSET=NFOOT, TOTALS=ONLY, TIME POINTS=TP", "RF",
-                "*NODE PRINT, NSET=NFOOT, TIME POINTS=TP", "U"]
+        out += [f"*NODE PRINT, NSET=NFOOT, TOTALS=ONLY, {f}", "RF",
+                f"*NODE PRINT, NSET=NFOOT, {f}", "U"]
     return out
 
 
-def write(s, mesh, probes, path):
-    """Write the deck to path; returns {'ccx_type', 'substitutions', 'dt_max_s'}."""
+def write(s, mesh, probes, path, dt, every=0, end=None):
+    """Write the deck to path with the largest step dt (s) and a history row every `every`
+    steps (0: no output, for the probe run), the step ending at `end` (default time.end).
+    Returns {'ccx_type', 'substitutions'}."""
     ccx_type, substitution = ELEMENT[(s["geometry"], s["mesh"]["element"])]
-    dt = time_step(s, mesh)
-    end = float(s["time"]["end"])
+    end = float(s["time"]["end"]) if end is None else end
     kind = s["load"][0]
     foot = sorted(mesh.bottom_nodes()) if kind == "wall" else []
     model_data, step_loads = load_blocks(s, mesh, dt)
@@ -192,11 +196,10 @@ def write(s, mesh, probes, path):
     if probe_elements:
         lines += ["*ELSET, ELSET=EPROBE"] + lines_of([e + 1 for e in probe_elements], 16)
     lines += material_block(s) + boundary_block(s, mesh, foot) + model_data
-    lines += time_points(s, dt)
     nlgeom = ", NLGEOM" if s["kinematics"] == "finite" else ""
     lines += [f"*STEP, INC=100000000{nlgeom}", "*DYNAMIC, EXPLICIT",
               f"{num(dt)}, {num(end)}, {num(dt * 1e-6)}, {num(dt)}"]
-    lines += step_loads + output_blocks(s, mesh, probe_elements, foot) + ["*END STEP"]
+    lines += step_loads + output_blocks(probe_elements, foot, every) + ["*END STEP"]
     with open(path, "w", encoding="ascii") as f:
         f.write("\n".join(lines) + "\n")
     subs = [substitution] if substitution else []
@@ -206,4 +209,4 @@ def write(s, mesh, probes, path):
                     "starts at rest (its momentum is not in the impulse), never leaves the "
                     "wall, and side nodes that roll down are not stopped at y = 0; the wall "
                     "force is the foot's reaction RF")
-    return {"ccx_type": ccx_type, "substitutions": subs, "dt_max_s": dt}
+    return {"ccx_type": ccx_type, "substitutions": subs}

@@ -50,20 +50,30 @@ def simulate(scene_yaml, out_dir):
     mesh = PlateMesh(s)
     reduced = s["mesh"]["element"] == "q4-1pt"
     located = probe_lookup.locate(mesh, s["output"]["probes"], reduced)
-    info = deck.write(s, mesh, located, os.path.join(out_dir, "job.inp"))
+    dt_scene = deck.time_step(s, mesh)
+    deck.write(s, mesh, located, os.path.join(out_dir, "probe.inp"), dt_scene, 0, 3 * dt_scene)
+    probe_wall, probe_cpu, probe_log = runner.run(out_dir, "probe")
+    dt_ccx = selected_step(probe_log) or dt_scene
+    dt, every = deck.output_step(s, min(dt_scene, dt_ccx))
+    info = deck.write(s, mesh, located, os.path.join(out_dir, "job.inp"), dt, every)
     wall, cpu, log_path = runner.run(out_dir)
+    wall, cpu = wall + probe_wall, cpu + probe_cpu
+    if dt < dt_scene * 0.99:
+        info["substitutions"].append(
+            f"time step {dt:.6g} s: below the scene's {dt_scene:.6g} s (ccx's own stable "
+            f"estimate {dt_ccx:.6g} s" + (", rounded down to divide output.every)"
+                                          if s["output"].get("every") else ")"))
     blocks = results.parse(os.path.join(out_dir, "job.dat"))
     factor = deck.report_factor(s)
     rows = history.build(s, mesh, located, blocks, factor, scene_io.end_time(s))
     cols = history.columns(s, located)
-    dt = selected_step(log_path)
     n_elements = mesh.nx * mesh.ny
     summary = contract.summary(s, cols, rows, n_elements, dt)
     adapter = {"code": "calculix", "version": ccx_version(), "input": ["job.inp"],
                "wall_time_s": wall, "cpu_time_s": cpu,
                "substitutions": info["substitutions"], "n_elements": n_elements,
-               "ccx_element": info["ccx_type"], "dt_max_s": info["dt_max_s"],
-               "dt_selected_s": dt}
+               "ccx_element": info["ccx_type"], "dt_scene_s": dt_scene,
+               "dt_ccx_estimate_s": dt_ccx, "dt_s": dt}
     contract.write(out_dir, cols, rows, summary, adapter)
 
 

@@ -36,7 +36,7 @@ def run(out_dir, job="job"):
     exe = shutil.which("ccx")
     if exe is None:
         raise CcxFailed("ccx not found on PATH")
-    log_path = os.path.join(out_dir, "ccx.log")
+    log_path = os.path.join(out_dir, f"{job}.log")
     env = dict(os.environ, OMP_NUM_THREADS=os.environ.get("OMP_NUM_THREADS", "1"))
     start, cpu0 = time.monotonic(), resource.getrusage(resource.RUSAGE_CHILDREN)
     with open(log_path, "w", encoding="utf-8") as log:
