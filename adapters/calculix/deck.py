@@ -73,12 +73,12 @@ def lines_of(values, per_line=8):
             for k in range(0, len(values), per_line)]
 
 
-def nodes_and_elements(s, mesh, ccx_type):
-    """*NODE and *ELEMENT blocks (ccx numbers = index + 1)."""
+def nodes_and_elements(s, mesh, ccx_type, lift=0.0):
+    """*NODE and *ELEMENT blocks (ccx numbers = index + 1), the body raised by lift (m)."""
     out = ["*NODE, NSET=NALL"]
     for n in range((mesh.nx + 1) * (mesh.ny + 1)):
         x, y = mesh.ccx_xy(n)
-        out.append(f"{n + 1}, {num(x)}, {num(y)}")
+        out.append(f"{n + 1}, {num(x)}, {num(y + lift)}")
     out.append(f"*ELEMENT, TYPE={ccx_type}, ELSET=EALL")
     for e, c in mesh.elements():
         out.append(f"{e + 1}, " + ", ".join(str(n + 1) for n in c))
@@ -104,11 +104,11 @@ def material_block(s):
     return out
 
 
-def boundary_block(s, mesh, foot):
-    """*BOUNDARY of the supports, the axis (u_r = 0) and, under the wall, the foot (u_y = 0)."""
+def boundary_block(mesh):
+    """*BOUNDARY of the supports and the symmetry line or axis (u_x = 0)."""
     held = mesh.supports()
-    for n in foot:
-        held.setdefault(n, set()).add(2)
+    if not held:
+        return []
     out = ["*BOUNDARY"]
     for n in sorted(held):
         out += [f"{n + 1}, {d}, {d}, 0." for d in sorted(held[n])]
@@ -143,13 +143,35 @@ def load_blocks(s, mesh, dt):
                 step.append(f"{n + 1}, 2, {num(-normal * length * width)}")
         return rectangular_amplitude(float(load["duration"]), end, dt), step
     if kind == "wall":
-        foot = set(mesh.bottom_nodes())
-        v = float(load["velocity"])
-        init = ["*INITIAL CONDITIONS, TYPE=VELOCITY"]
-        n_all = (mesh.nx + 1) * (mesh.ny + 1)
-        init += [f"{n + 1}, 2, {num(-v)}" for n in range(n_all) if n not in foot]
-        return init, []
+        # The body is launched by the step before (wall_launch); here the foot lands.
+        lift = wall_lift(s, dt)
+        return (["*AMPLITUDE, NAME=CONST", "0., 1., 1., 1."],
+                ["*DLOAD, OP=NEW", "*BOUNDARY, AMPLITUDE=CONST"]
+                + [f"{n + 1}, 2, 2, {num(-lift)}" for n in mesh.bottom_nodes()])
     raise ValueError(f"load {kind} reaches the deck writer")
+
+
+LAUNCH_STEPS = 10
+
+
+def wall_lift(s, dt):
+    """How far above the wall the body starts, m: V T / 2 with T = LAUNCH_STEPS dt (s), the
+    launch under the uniform acceleration V / T that ends with the foot on the wall at -V."""
+    return float(s["load"][1]["velocity"]) * LAUNCH_STEPS * dt / 2.0
+
+
+def wall_launch(s, dt, nlgeom, every):
+    """The launch step: a uniform body acceleration V / T downward for T = LAUNCH_STEPS dt
+    gives every node -V with no strain (ccx 2.20 drops *INITIAL CONDITIONS, TYPE=VELOCITY
+    on the 2-D elements it expands, measured)."""
+    t_launch = LAUNCH_STEPS * dt
+    accel = float(s["load"][1]["velocity"]) / t_launch
+    return [f"*STEP, INC=100000000{nlgeom}", "*DYNAMIC, EXPLICIT",
+            f"{num(dt)}, {num(t_launch)}, {num(dt * 1e-6)}, {num(dt)}",
+            "*DLOAD", f"EALL, GRAV, {num(accel)}, 0., -1., 0."] + (
+                # ccx wants energy output requested in the first step with NLGEOM
+                [f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, FREQUENCY={LAUNCH_STEPS}", "ELSE, ELKE"]
+                if every else []) + ["*END STEP"]
 
 
 def output_step(s, dt_limit):
@@ -189,14 +211,17 @@ def write(s, mesh, probes, path, dt, every=0, end=None):
     model_data, step_loads = load_blocks(s, mesh, dt)
     probe_elements = sorted({e for e, _ in probes.values()})
     lines = ["*HEADING", f"impact scene {s.get('title') or ''} (written by adapters/calculix)"]
-    lines += nodes_and_elements(s, mesh, ccx_type)
+    lift = wall_lift(s, dt) if kind == "wall" else 0.0
+    lines += nodes_and_elements(s, mesh, ccx_type, lift)
     lines += node_set("NMID", sorted(set(mesh.mid_span().values())))
     if foot:
         lines += node_set("NFOOT", foot)
     if probe_elements:
         lines += ["*ELSET, ELSET=EPROBE"] + lines_of([e + 1 for e in probe_elements], 16)
-    lines += material_block(s) + boundary_block(s, mesh, foot) + model_data
+    lines += material_block(s) + boundary_block(mesh) + model_data
     nlgeom = ", NLGEOM" if s["kinematics"] == "finite" else ""
+    if kind == "wall":
+        lines += wall_launch(s, dt, nlgeom, every)
     lines += [f"*STEP, INC=100000000{nlgeom}", "*DYNAMIC, EXPLICIT",
               f"{num(dt)}, {num(end)}, {num(dt * 1e-6)}, {num(dt)}"]
     lines += step_loads + output_blocks(probe_elements, foot, every) + ["*END STEP"]
@@ -204,9 +229,10 @@ def write(s, mesh, probes, path, dt, every=0, end=None):
         f.write("\n".join(lines) + "\n")
     subs = [substitution] if substitution else []
     if kind == "wall":
-        subs.append("load.wall -> u_y = 0 held on the bottom face from t = 0 (*BOUNDARY) with "
-                    "the rest of the body at -V (*INITIAL CONDITIONS, TYPE=VELOCITY): the foot "
-                    "starts at rest (its momentum is not in the impulse), never leaves the "
-                    "wall, and side nodes that roll down are not stopped at y = 0; the wall "
-                    "force is the foot's reaction RF")
-    return {"ccx_type": ccx_type, "substitutions": subs}
+        subs.append("load.wall -> the body launched to -V by a uniform acceleration over "
+                    f"{LAUNCH_STEPS} steps before t = 0 (a first step), then u_y held on the "
+                    "bottom face (*BOUNDARY): the foot lands at t = 0 and never leaves the "
+                    "wall (no release), and side nodes that roll down are not stopped at "
+                    "y = 0; the wall force is the foot's reaction RF")
+    return {"ccx_type": ccx_type, "substitutions": subs,
+            "time_offset_s": LAUNCH_STEPS * dt if kind == "wall" else 0.0, "lift_m": lift}

@@ -55,21 +55,22 @@ def block_at(blocks, kind, name, k):
     return data[k]
 
 
-def row_at(s, mesh, probes, blocks, k, factor):
-    """The k-th ccx output as a history row {column: value}."""
+def row_at(s, mesh, probes, blocks, k, factor, launch):
+    """The k-th ccx output as a history row {column: value}; launch = (time offset s,
+    lift m) of the wall's launch step (ccx's time and u_y start before the landing)."""
     t, rows = block_at(blocks, "U", "NMID", k)
     u = nodal(rows)
     mid = mesh.mid_span()
-    row = {"time_s": t}
+    row = {"time_s": t - launch[0]}
     for which in ("top", "mid", "bottom"):
-        row[f"{which}_uy_m"] = u[mid[which] + 1][1]
+        row[f"{which}_uy_m"] = u[mid[which] + 1][1] + launch[1]
     if s["load"][0] == "wall":
         row["contact_force_N"] = block_at(blocks, "RF", "NFOOT", k)[1][0][1] * factor
         foot = nodal(block_at(blocks, "U", "NFOOT", k)[1])
         row["foot_radius_m"] = max(mesh.ccx_xy(n - 1)[0] + v[0] for n, v in foot.items())
         row["bar_length_m"] = mesh.h + row["top_uy_m"]
     else:
-        row["contact_force_N"] = load_force(s, t)
+        row["contact_force_N"] = load_force(s, row["time_s"])
     if probes:
         stress_rows = block_at(blocks, "S", "EPROBE", k)[1]
         for name, (e, p) in probes.items():
@@ -85,10 +86,13 @@ def row_at(s, mesh, probes, blocks, k, factor):
     return row
 
 
-def build(s, mesh, probes, blocks, factor, end):
+def build(s, mesh, probes, blocks, factor, end, launch=(0.0, 0.0)):
     """All history rows; DatError when ccx's output stops before time.end."""
+    if launch[0] > 0.0:  # the launch step's outputs are not the scene's
+        blocks = {key: [(t, r) for t, r in data if t > launch[0] * (1 + 1e-9)]
+                  for key, data in blocks.items()}
     n = len(series(blocks, "U", "NMID"))
-    rows = [row_at(s, mesh, probes, blocks, k, factor) for k in range(n)]
+    rows = [row_at(s, mesh, probes, blocks, k, factor, launch) for k in range(n)]
     if not rows or rows[-1]["time_s"] < end * (1 - 1e-6):
         last = rows[-1]["time_s"] if rows else 0.0
         raise DatError(f"job.dat ends at t = {last:.6g} s, before time.end = {end:.6g} s")

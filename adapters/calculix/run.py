@@ -65,7 +65,8 @@ def simulate(scene_yaml, out_dir):
                                           if s["output"].get("every") else ")"))
     blocks = results.parse(os.path.join(out_dir, "job.dat"))
     factor = deck.report_factor(s)
-    rows = history.build(s, mesh, located, blocks, factor, scene_io.end_time(s))
+    rows = history.build(s, mesh, located, blocks, factor, scene_io.end_time(s),
+                         (info["time_offset_s"], info["lift_m"]))
     cols = history.columns(s, located)
     n_elements = mesh.nx * mesh.ny
     summary = contract.summary(s, cols, rows, n_elements, dt)
