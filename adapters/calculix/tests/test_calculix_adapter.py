@@ -230,6 +230,30 @@ class PhysicsTest(Tmp):
         self.assertAlmostEqual(h / (2 * t0) / c, 1.0, delta=0.01)
         self.assertAlmostEqual(sigma / (RHO * -slope) / c, 1.0, delta=0.01)
 
+    def test_bar_on_the_wall(self):
+        """An elastic bar (nu = 0, free ends) landing at V on the wall in plane strain: until
+        the front reaches the top at h / c the wall force is rho c V L W (1-D waves,
+        c = sqrt(E / rho)) and the top still moves at -V."""
+        h, length, width, v = 0.1, 0.02, 0.2, 1.0
+        c = math.sqrt(E / RHO)
+        s = {"plate": {"length": length, "width": width, "thickness": h, "ends": "free"},
+             "material": {"density": RHO, "youngs_modulus": E, "poisson_ratio": 0.0},
+             "mesh": {"nx": 2, "ny": 20, "element": "q4-full", "model": "half"},
+             "load": {"wall": {"velocity": v}},
+             "time": {"end": 0.9 * h / c, "dt": {"cfl": 0.5}},
+             "output": {"every": 0.05 * h / c}}
+        r = run_adapter(s, self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = read_history(self.out)
+        window = [row["contact_force_N"] for row in rows if 0.3 <= row["time_s"] * c / h <= 0.8]
+        self.assertGreater(len(window), 5)
+        mean = sum(window) / len(window)
+        self.assertAlmostEqual(mean / (RHO * c * v * length * width), 1.0, delta=0.03)
+        top = [row for row in rows if abs(row["time_s"] * c / h - 0.5) < 0.01][0]
+        self.assertAlmostEqual(top["top_uy_m"] / (-v * top["time_s"]), 1.0, delta=0.01)
+        summary = read_json(os.path.join(self.out, "summary.json"))
+        self.assertAlmostEqual(summary["wall"]["final_length_m"], rows[-1]["bar_length_m"])
+
 
 if __name__ == "__main__":
     unittest.main()
