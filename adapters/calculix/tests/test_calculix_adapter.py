@@ -9,10 +9,12 @@ import json
 import math
 import os
 import shutil
+import signal
 import stat
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -185,6 +187,31 @@ class BrokenCcxTest(Tmp):
         env = self.fake_ccx("echo ' SELECTED time increment:1e-7'; echo 'Segmentation fault'")
         r = run_adapter(pulse_scene(), self.out, env)
         self.assert_failed_cleanly(r, "job.dat")
+
+    def test_sigterm_reaches_ccx(self):
+        """SIGTERM to the adapter stops its ccx (no stray process) and writes nothing."""
+        pid_file = os.path.join(self.out, "ccx.pid")
+        env = self.fake_ccx(f"echo $$ > {pid_file}; exec {shutil.which('sleep')} 60")
+        s = pulse_scene()
+        with open(os.path.join(self.out, "scene.json"), "w") as f:
+            json.dump(s, f)
+        child = subprocess.Popen([sys.executable, os.path.join(ADAPTER, "run.py"),
+                                  os.path.join(self.out, "scene.yaml"), self.out],
+                                 cwd=ADAPTER, env=env, stderr=subprocess.PIPE, text=True)
+        for _ in range(200):
+            if os.path.exists(pid_file) and open(pid_file).read().strip():
+                break
+            time.sleep(0.05)
+        with open(pid_file) as f:
+            ccx_pid = int(f.read())
+        child.send_signal(signal.SIGTERM)
+        _, err = child.communicate(timeout=30)
+        self.assertNotEqual(child.returncode, 0)
+        self.assertIn("killed by signal", err)
+        time.sleep(0.2)
+        with self.assertRaises(ProcessLookupError):
+            os.kill(ccx_pid, 0)  # gone (reaped by the adapter)
+        self.assertEqual(outputs_present(self.out), [])
 
     @unittest.skipUnless(HAVE_CCX, NO_CCX)
     def test_deck_rejected_by_the_real_ccx(self):
