@@ -244,3 +244,61 @@ def write(s, mesh, probes, path, dt, every=0, end=None):
                     "y = 0; the wall force is the foot's reaction RF")
     return {"ccx_type": ccx_type, "substitutions": subs,
             "time_offset_s": LAUNCH_STEPS * dt if kind == "wall" else 0.0, "lift_m": lift}
+
+
+def write_wedge(s, mesh, path, dt, every=0, end=None):
+    """The axisymmetric wall as a C3D8/C3D6 wedge (wedge.py) with initial velocities -V on
+    every node but the foot, whose axial displacement is held from t = 0."""
+    import wedge as wedge_mod
+    w = wedge_mod.Wedge(mesh)
+    end = float(s["time"]["end"]) if end is None else end
+    hex_type = "C3D8R" if s["mesh"]["element"] == "q4-1pt" else "C3D8"
+    hexes, wedges = w.elements()
+    foot_off, foot_axis = w.foot()
+    lines = ["*HEADING", f"impact scene {s.get('title') or ''} (axisymmetric wedge, adapters/calculix)",
+             "*NODE, NSET=NALL"]
+    lines += [f"{i + 1}, {num(x)}, {num(y)}, {num(z)}" for i, (x, y, z) in enumerate(w.coords)]
+    for kind, rows in ((hex_type, hexes), ("C3D6", wedges)):
+        if rows:
+            lines.append(f"*ELEMENT, TYPE={kind}, ELSET=EALL")
+            lines += [f"{e}, " + ", ".join(map(str, nodes)) for e, nodes in rows]
+    for name, nodes in (("NOFF", w.off_axis()), ("NAXIS", w.axis()),
+                        ("NMID", sorted(set(w.mid_span().values()))),
+                        ("NFOOTOFF", sorted(foot_off)), ("NFOOTAX", sorted(foot_axis))):
+        lines += [f"*NSET, NSET={name}"] + lines_of(nodes, 16)
+    lines += ["*TRANSFORM, NSET=NOFF, TYPE=C", "0., 0., 0., 0., 1., 0."]
+    lines += [l for l in material_block(s) if l != ""]
+    lines += ["*BOUNDARY", "NOFF, 2, 2, 0.", "NAXIS, 1, 1, 0.", "NAXIS, 3, 3, 0.",
+              "NFOOTOFF, 3, 3, 0.", "NFOOTAX, 2, 2, 0."]
+    foot = set(foot_off) | set(foot_axis)
+    v = float(s["load"][1]["velocity"])
+    lines.append("*INITIAL CONDITIONS, TYPE=VELOCITY")  # global dofs: 2 is the axis
+    lines += [f"{i}, 2, {num(-v)}" for i in range(1, len(w.coords) + 1) if i not in foot]
+    nlgeom = ", NLGEOM" if s["kinematics"] == "finite" else ""
+    lines += [f"*STEP, INC=100000000{nlgeom}", "*DYNAMIC, EXPLICIT",
+              f"{num(dt)}, {num(end)}, {num(dt * 1e-6)}, {num(dt)}"]
+    if every:
+        f = f"FREQUENCY={every}"
+        lines += [f"*NODE PRINT, NSET=NMID, {f}", "U",
+                  f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, {f}", "ELSE, ELKE",
+                  f"*NODE PRINT, NSET=NFOOTOFF, TOTALS=ONLY, {f}", "RF",
+                  f"*NODE PRINT, NSET=NFOOTAX, TOTALS=ONLY, {f}", "RF",
+                  f"*NODE PRINT, NSET=NFOOTOFF, {f}", "U"]
+    lines.append("*END STEP")
+    with open(path, "w", encoding="ascii") as fh:
+        fh.write("\n".join(lines) + "\n")
+    subs = [f"geometry: axisymmetric under the wall -> a {math.degrees(2 * wedge_mod.HALF_ANGLE):g}"
+            f"-degree wedge of {hex_type} (C3D6 on the axis) with a cylindrical *TRANSFORM "
+            "holding every node in its meridian plane (ccx 2.20 ignores initial velocities on "
+            "CAX4, measured); results times pi / (sin a cos a)",
+            "load.wall -> u_y held on the bottom face from t = 0 (*BOUNDARY), the rest of the "
+            "body at -V (*INITIAL CONDITIONS): the foot starts at rest (its momentum is not in "
+            "the impulse), never leaves the wall (no release), and side nodes that roll down "
+            "are not stopped at y = 0; the wall force is the foot's reaction RF"]
+    if s["mesh"]["element"] == "q4-sri":
+        subs.insert(0, "q4-sri -> C3D8 (full integration, no B-bar: ccx has no selective "
+                       "reduced integration element; locks under plastic flow)")
+    elif s["mesh"]["element"] == "q4-1pt":
+        subs.insert(0, "q4-1pt -> C3D8R (ccx's hourglass control), C3D6 (full) on the axis")
+    return {"ccx_type": hex_type, "substitutions": subs, "time_offset_s": 0.0, "lift_m": 0.0,
+            "wedge": w}

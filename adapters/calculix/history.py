@@ -31,8 +31,8 @@ def columns(s, probes):
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
     for name in probes:
         cols += [f"{name}_{c}" for c in ("sxx_Pa", "syy_Pa", "sxy_Pa", "szz_Pa", "von_mises_Pa")]
-    if s["load"][0] != "wall":  # ccx's ELKE after the launch step is garbage (1e20 J, measured)
-        cols.append("plate_kinetic_J")
+    if s["load"][0] != "wall" or "wedge" in s:
+        cols.append("plate_kinetic_J")  # not after the launch step: garbage (1e20 J, measured)
     if not s["material"].get("plasticity"):
         cols.append("strain_energy_J")
     return cols
@@ -56,9 +56,33 @@ def block_at(blocks, kind, name, k):
     return data[k]
 
 
+def wedge_row(mesh, w, blocks, k, factor):
+    """The k-th output of the axisymmetric wedge under the wall (deck.write_wedge): the axis
+    nodes in global dofs (y = axial), the off-axis foot in its cylindrical (r, theta, axial)
+    dofs."""
+    t, rows = block_at(blocks, "U", "NMID", k)
+    u = nodal(rows)
+    row = {"time_s": t}
+    for which, n in w.mid_span().items():
+        row[f"{which}_uy_m"] = u[n][1]
+    rf_off = block_at(blocks, "RF", "NFOOTOFF", k)[1][0]
+    rf_axis = block_at(blocks, "RF", "NFOOTAX", k)[1][0]
+    row["contact_force_N"] = (rf_off[1] + rf_axis[1]) * factor  # totals print global dofs
+    foot = nodal(block_at(blocks, "U", "NFOOTOFF", k)[1])
+    row["foot_radius_m"] = max(w.radius[n] + v[0] for n, v in foot.items())
+    row["bar_length_m"] = mesh.h + row["top_uy_m"]
+    return row
+
+
 def row_at(s, mesh, probes, blocks, k, factor, launch):
     """The k-th ccx output as a history row {column: value}; launch = (time offset s,
     lift m) of the wall's launch step (ccx's time and u_y start before the landing)."""
+    if "wedge" in s:
+        row = wedge_row(mesh, s["wedge"], blocks, k, factor)
+        row["plate_kinetic_J"] = block_at(blocks, "ELKE", "EALL", k)[1][0][0] * factor
+        if not s["material"].get("plasticity"):
+            row["strain_energy_J"] = block_at(blocks, "ELSE", "EALL", k)[1][0][0] * factor
+        return row
     t, rows = block_at(blocks, "U", "NMID", k)
     u = nodal(rows)
     mid = mesh.mid_span()

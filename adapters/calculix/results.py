@@ -44,7 +44,7 @@ def parse(path):
             current = []
             blocks.setdefault((kind, m.group("set")), []).append((number(m.group("t")), current))
         elif line.strip() and current is not None:
-            current.append([number(v) for v in line.split()])
+            current.append([number(v) for v in line.split() if v != "L"])  # L: local dofs
     return blocks
 
 

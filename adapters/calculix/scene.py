@@ -81,13 +81,6 @@ def check_expressible(s):
         raise NotExpressible("time.end.after_contact",
                              "a ccx step has a fixed length; it cannot end on a contact "
                              "condition")
-    if s["geometry"] == "axisymmetric" and kind == "wall":
-        raise NotExpressible("load.wall (geometry: axisymmetric)",
-                             "ccx 2.20 ignores *INITIAL CONDITIONS, TYPE=VELOCITY on the CAX4 "
-                             "elements it expands (measured: no motion), and a body-force "
-                             "launch is not uniform on its 2-degree wedge (the axis nodes "
-                             "reach 4/3 of the others' velocity, measured); a hand-built 3-D "
-                             "wedge of C3D8 is not written by this adapter")
     if s["geometry"] == "axisymmetric" and kind == "traction":
         raise NotExpressible("load.traction", "refused by impact in the axisymmetric geometry")
 
