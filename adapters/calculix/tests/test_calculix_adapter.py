@@ -281,6 +281,33 @@ class PhysicsTest(Tmp):
         summary = read_json(os.path.join(self.out, "summary.json"))
         self.assertAlmostEqual(summary["wall"]["final_length_m"], rows[-1]["bar_length_m"])
 
+    def test_round_bar_on_the_wall(self):
+        """The same in the axisymmetric geometry (the hand-built wedge): a round bar of radius
+        R, nu = 0, lands at V; until h / c the wall force is rho c V pi R^2 and the top moves
+        at -V; the first row's kinetic energy is that of the part still moving, (1 - c t / h) of
+        m V^2 / 2 (the ring factor of the wedge)."""
+        h, radius, v = 0.1, 0.01, 1.0
+        c = math.sqrt(E / RHO)
+        s = {"geometry": "axisymmetric",
+             "plate": {"length": 2 * radius, "width": 1.0, "thickness": h, "ends": "free"},
+             "material": {"density": RHO, "youngs_modulus": E, "poisson_ratio": 0.0},
+             "mesh": {"nx": 4, "ny": 40, "element": "q4-full"},
+             "load": {"wall": {"velocity": v}},
+             "time": {"end": 0.9 * h / c, "dt": {"cfl": 0.5}},
+             "output": {"every": 0.05 * h / c}}
+        r = run_adapter(s, self.out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = read_history(self.out)
+        window = [row["contact_force_N"] for row in rows if 0.3 <= row["time_s"] * c / h <= 0.8]
+        mean = sum(window) / len(window)
+        self.assertAlmostEqual(mean / (RHO * c * v * math.pi * radius ** 2), 1.0, delta=0.03)
+        top = [row for row in rows if abs(row["time_s"] * c / h - 0.5) < 0.01][0]
+        self.assertAlmostEqual(top["top_uy_m"] / (-v * top["time_s"]), 1.0, delta=0.01)
+        mass = RHO * math.pi * radius ** 2 * h
+        moving = 1.0 - rows[0]["time_s"] * c / h
+        self.assertAlmostEqual(rows[0]["plate_kinetic_J"] / (moving * mass * v ** 2 / 2), 1.0,
+                               delta=0.02)
+
 
 if __name__ == "__main__":
     unittest.main()
