@@ -94,9 +94,10 @@ def check_impactor(impactor):
                              "the paper's nodal contact law (eq. 4 at one node) is not a "
                              "ccx contact law")
     raise NotExpressible("load.impactor.contact: surface",
-                         "ccx 2.20 explicit dynamics stops once a contact pair is defined "
-                         "(measured); the implicit *DYNAMIC rigid-nose model is not written "
-                         "by this adapter")
+                         "ccx 2.20 explicit dynamics crashed once a contact pair was defined "
+                         "(measured before this adapter); implicit *DYNAMIC with a rigid nose "
+                         "ran 0.35 ms of a 1,600-element plate in minutes, so a 3 ms scene "
+                         "would pass the timeout: not written by this adapter")
 
 
 def end_time(s):
