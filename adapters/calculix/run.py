@@ -81,7 +81,7 @@ def simulate(scene_yaml, out_dir):
     summary = contract.summary(s, cols, rows, n_elements, dt)
     if s["kinematics"] == "small":  # ccx keeps the step it selected (= dt) without NLGEOM
         summary["n_steps"] = math.ceil(scene_io.end_time(s) / dt - 1e-9)
-    adapter = {"code": "calculix", "version": ccx_version(), "input": ["job.inp"],
+    adapter = {"code": "calculix", "version": ccx_version(), "input": ["probe.inp", "job.inp"],
                "wall_time_s": wall, "cpu_time_s": cpu,
                "substitutions": info["substitutions"], "n_elements": n_elements,
                "ccx_element": info["ccx_type"], "dt_scene_s": dt_scene,

@@ -236,7 +236,7 @@ class PhysicsTest(Tmp):
         self.assertIn("A", summary["max_von_mises_Pa"])
         adapter = read_json(os.path.join(self.out, "adapter.json"))
         self.assertEqual(adapter["code"], "calculix")
-        self.assertEqual(adapter["input"], ["job.inp"])
+        self.assertEqual(adapter["input"], ["probe.inp", "job.inp"])
 
     def test_plane_strain_p_wave_speed(self):
         """Behind the front the mid-plane node moves as u = -(sigma / (rho c)) (t - h / 2c)
