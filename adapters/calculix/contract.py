@@ -1,0 +1,72 @@
+"""Write the contract's three files (adapters/README.md): history.csv, summary.json,
+adapter.json, each to a temporary name first and renamed, so a failure leaves none of them."""
+
+import json
+import os
+
+OUTPUTS = ("history.csv", "summary.json", "adapter.json")
+
+
+def summary(s, cols, rows, n_elements, dt):
+    """summary.json's keys that the rows determine (impact's names, units and signs)."""
+    force = [r["contact_force_N"] for r in rows]
+    times = [r["time_s"] for r in rows]
+    out = {"peak_contact_force_N": max(force),
+           "max_plate_displacement_m": min(r["mid_uy_m"] for r in rows),
+           "n_elements": n_elements}
+    kind, load = s["load"]
+    if kind in ("pulse", "traction"):
+        # The rectangular load ccx applied: force times its duration (within the run).
+        out["impulse_Ns"] = force[0] * min(float(load["duration"]), times[-1])
+    else:
+        out["impulse_Ns"] = sum((f0 + f1) * (t1 - t0) / 2 for f0, f1, t0, t1
+                                in zip(force, force[1:], times, times[1:]))
+    probes = sorted({c[:-len("_von_mises_Pa")] for c in cols if c.endswith("_von_mises_Pa")})
+    if probes:
+        out["max_von_mises_Pa"] = {p: max(r[f"{p}_von_mises_Pa"] for r in rows) for p in probes}
+    if dt:
+        out["dt_s"] = dt
+    if kind == "wall":
+        last = rows[-1]
+        out["wall"] = {"peak_force_N": max(force), "final_length_m": last["bar_length_m"],
+                       "length_ratio": last["bar_length_m"] / float(s["plate"]["thickness"]),
+                       "foot_radius_m": last["foot_radius_m"],
+                       "max_foot_radius_m": max(r["foot_radius_m"] for r in rows)}
+    return out
+
+
+def write_atomic(path, text):
+    """Write text to path through path + '.part'."""
+    with open(path + ".part", "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(path + ".part", path)
+
+
+def history_text(cols, rows):
+    """history.csv: the header, then one line per row (shortest exact float text)."""
+    lines = [",".join(cols)]
+    lines += [",".join(repr(float(r[c])) for c in cols) for r in rows]
+    return "\n".join(lines) + "\n"
+
+
+def write(out_dir, cols, rows, summary_dict, adapter_dict):
+    """Write the three files into out_dir (none of them on an exception)."""
+    texts = {"history.csv": history_text(cols, rows),
+             "summary.json": json.dumps(summary_dict, indent=2) + "\n",
+             "adapter.json": json.dumps(adapter_dict, indent=2) + "\n"}
+    try:
+        for name in OUTPUTS:
+            write_atomic(os.path.join(out_dir, name), texts[name])
+    except BaseException:
+        remove(out_dir)
+        raise
+
+
+def remove(out_dir):
+    """Remove any of the three files (and their .part) from out_dir."""
+    for name in OUTPUTS:
+        for p in (name, name + ".part"):
+            try:
+                os.remove(os.path.join(out_dir, p))
+            except FileNotFoundError:
+                pass
