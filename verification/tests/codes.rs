@@ -183,6 +183,9 @@ fn the_same_checks_are_evaluated_on_the_other_code() {
     assert_eq!(results["codes"][0]["code"], "fake");
     assert_eq!(results["codes"][0]["cases"][0]["code"], "fake");
     assert_eq!(results["codes"][0]["counts"]["not_expressible"], 2);
+    // The builtin only measured is impact's own computation: not run for the other code.
+    assert!(results["cases"][0]["metrics"]["law"].is_object());
+    assert!(results["codes"][0]["cases"][0]["metrics"]["law"].is_null());
     let run = root.join("out/codes/fake/runs/suite/case/plate");
     for f in [
         "history.csv",

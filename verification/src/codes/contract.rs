@@ -45,6 +45,7 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
                 wall_time_s,
                 n_elements,
                 n_steps,
+                code_time_s: Some(wall_time_s),
             });
         }
         for key in ["code", "version", "substitutions", "input"] {

@@ -36,6 +36,10 @@ pub struct Cost {
     pub wall_time_s: f64,
     pub n_elements: f64,
     pub n_steps: f64,
+    /// s, the code's own time within it, as its adapter reports it (`adapter.json`
+    /// `wall_time_s`); the rest is the adapter's overhead. None for impact's runs.
+    #[serde(default)]
+    pub code_time_s: Option<f64>,
 }
 
 impl Cost {

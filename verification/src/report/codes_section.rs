@@ -188,7 +188,8 @@ fn costs(from: &Path) -> String {
         "### Cost per element-step on the same scenes\n\nWall-clock time on this machine \
          (`costs.json`; another code's time is its whole adapter run: writing its input, the \
          code, reading its output) over elements times steps; each code's own element count and \
-         step.\n\n| scene | code | elements | steps | wall s | ns per element-step | impact, ns per element-step |\n|---|---|---|---|---|---|---|\n",
+         step. The adapter's overhead is the whole run's time less the code's own (as its \
+         adapter reports it).\n\n| scene | code | elements | steps | wall s | adapter overhead | ns per element-step | impact, ns per element-step |\n|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows.iter().filter(|r| r["code"] != "impact") {
         let mine = impact.get(&at(r)).map_or("-".into(), |i| {
@@ -197,14 +198,17 @@ fn costs(from: &Path) -> String {
                 i["ns_per_element_step"].as_f64().unwrap_or(f64::NAN)
             )
         });
+        let wall = r["wall_time_s"].as_f64().unwrap_or(f64::NAN);
+        let overhead = r["code_time_s"]
+            .as_f64()
+            .map_or("-".into(), |c| format!("{:.1} %", 100.0 * (wall - c) / c));
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {:.2} | {:.1} | {mine} |",
+            "| {} | {} | {} | {} | {wall:.2} | {overhead} | {:.1} | {mine} |",
             at(r),
             r["code"].as_str().unwrap_or(""),
             r["n_elements"],
             r["n_steps"],
-            r["wall_time_s"].as_f64().unwrap_or(f64::NAN),
             r["ns_per_element_step"].as_f64().unwrap_or(f64::NAN)
         );
     }

@@ -204,6 +204,7 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             wall_time_s: s.wall_time,
             n_elements: s.n_elements as f64,
             n_steps: s.n_steps as f64,
+            code_time_s: None,
         }),
     })
 }

@@ -258,6 +258,7 @@ fn write_costs(outcome: &Outcome, path: &Path) -> std::io::Result<()> {
                     "code": code, "suite": suite, "case": case, "scene": scene,
                     "wall_time_s": cost.wall_time_s, "n_elements": cost.n_elements,
                     "n_steps": cost.n_steps, "ns_per_element_step": cost.ns_per_element_step(),
+                    "code_time_s": cost.code_time_s,
                 }));
             }
         }

@@ -6,7 +6,7 @@
 //! produced*). The known failures are the code's own (its adapter's `expected`), never the
 //! case's, which are `impact`'s.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::codes::is_not_expressible;
 use crate::definition::case::{Case, CheckFile, MeasureFile};
@@ -58,6 +58,35 @@ pub fn judge(
         let why = format!("not produced by {code}: {}", r.message);
         not_expressible(r, why);
     }
+}
+
+/// The builtins of `case` that another code's rows need: those a check's reference reads (a
+/// modal solution, a closed form). A builtin only measured is impact's own computation, N/E on
+/// another code, and is not run for it.
+pub fn referenced_builtins(case: &Case) -> BTreeSet<String> {
+    let default_scene = (case.file.scenes.len() == 1)
+        .then(|| case.file.scenes.keys().next().cloned())
+        .flatten();
+    let mut read = Vec::new();
+    for k in &case.file.checks {
+        let Some(r) = &k.value.reference else {
+            continue;
+        };
+        if let Some(m) = &r.value.metric {
+            scenes_read(m, default_scene.as_deref(), &BTreeMap::new(), &mut read);
+        }
+        if let Some(s) = r.value.history.as_ref().and_then(|h| h.scene.clone()) {
+            read.push(s);
+        }
+    }
+    read.into_iter()
+        .filter(|n| {
+            case.file
+                .scenes
+                .get(n)
+                .is_some_and(|s| s.value.builtin.is_some())
+        })
+        .collect()
 }
 
 fn not_expressible(r: &mut CheckResult, why: String) {

@@ -191,6 +191,12 @@ pub fn plan_for<'a>(
                         &js,
                         opts.include_heavy,
                     )?);
+                } else {
+                    // Another code runs the scenes, and the builtins its references need.
+                    let needed = crate::run::other_code::referenced_builtins(case);
+                    js.retain(|name, job| {
+                        matches!(job, Job::Scene { .. }) || needed.contains(name)
+                    });
                 }
                 Ok(js)
             });
