@@ -344,7 +344,7 @@ impl CodeArgs {
             codes.push(Code::find(root, name)?);
         }
         if let Some(dir) = &self.results_from {
-            let code = Code::results_from(dir)?;
+            let code = Code::results_from(root, dir)?;
             if names.contains(&code.name()) {
                 return Err(format!(
                     "--results-from {}: its name {:?} is also a --code",

@@ -152,6 +152,7 @@ impl Adapter {
             .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
         // The whole adapter's time (input, code, output) is the code's cost on this scene.
         if let Some(c) = &mut run.cost {
+            c.code_time_s = Some(c.wall_time_s);
             c.wall_time_s = done.wall_time_s;
         }
         run.files = kept_files(dir, &run);

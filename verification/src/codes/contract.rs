@@ -35,7 +35,12 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
     let adapter = dir.join("adapter.json");
     if adapter.exists() {
         let a = read_json(&adapter)?;
-        let number = |k: &str| a.get(k).and_then(Value::as_f64);
+        // The counts from adapter.json, else from the summary (where impact writes them).
+        let number = |k: &str| {
+            a.get(k)
+                .and_then(Value::as_f64)
+                .or_else(|| summary.get(k).and_then(Value::as_f64))
+        };
         if let (Some(wall_time_s), Some(n_elements), Some(n_steps)) = (
             number("wall_time_s"),
             number("n_elements"),
@@ -45,7 +50,7 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
                 wall_time_s,
                 n_elements,
                 n_steps,
-                code_time_s: Some(wall_time_s),
+                code_time_s: None,
             });
         }
         for key in ["code", "version", "substitutions", "input"] {

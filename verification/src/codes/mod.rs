@@ -32,8 +32,10 @@ pub enum Code {
     Impact,
     /// Another code through its adapter.
     Adapter(Adapter),
-    /// Histories and summaries someone computed, one folder per scene.
-    ResultsFrom(PathBuf),
+    /// Histories and summaries someone computed, one folder per scene; with the known
+    /// failures of the adapter of the same name, when there is one (`suite/case/check` ->
+    /// reason).
+    ResultsFrom(PathBuf, BTreeMap<String, String>),
 }
 
 impl Code {
@@ -45,15 +47,22 @@ impl Code {
         Adapter::load(root, name).map(Code::Adapter)
     }
 
-    /// `--results-from DIR`: refused when DIR is not a folder.
-    pub fn results_from(dir: &Path) -> Result<Code, String> {
+    /// `--results-from DIR`: refused when DIR is not a folder. Named by DIR's own name; the
+    /// known failures of the adapter of that name (under `root`), if any, are its own.
+    pub fn results_from(root: &Path, dir: &Path) -> Result<Code, String> {
         if !dir.is_dir() {
             return Err(format!(
                 "--results-from {}: not a folder (expected DIR/<suite>/<case>/<scene>/ with history.csv and summary.json, adapters/README.md)",
                 dir.display()
             ));
         }
-        Ok(Code::ResultsFrom(dir.to_path_buf()))
+        let name = dir
+            .file_name()
+            .map_or("results".into(), |n| n.to_string_lossy().into_owned());
+        let expected = Adapter::load(root, &name)
+            .map(|a| a.expected)
+            .unwrap_or_default();
+        Ok(Code::ResultsFrom(dir.to_path_buf(), expected))
     }
 
     /// The name its rows carry (for `--results-from DIR`, DIR's own name).
@@ -61,7 +70,7 @@ impl Code {
         match self {
             Code::Impact => "impact".into(),
             Code::Adapter(a) => a.name.clone(),
-            Code::ResultsFrom(dir) => dir
+            Code::ResultsFrom(dir, _) => dir
                 .file_name()
                 .map_or("results".into(), |n| n.to_string_lossy().into_owned()),
         }
@@ -76,7 +85,7 @@ impl Code {
         match self {
             Code::Impact => "this project's solver (in-process)".into(),
             Code::Adapter(a) => a.description.clone(),
-            Code::ResultsFrom(dir) => format!("results read from {}", dir.display()),
+            Code::ResultsFrom(dir, _) => format!("results read from {}", dir.display()),
         }
     }
 
@@ -88,7 +97,7 @@ impl Code {
             } else {
                 a.cases.clone()
             }),
-            Code::Impact | Code::ResultsFrom(_) => None,
+            Code::Impact | Code::ResultsFrom(..) => None,
         }
     }
 
@@ -97,7 +106,8 @@ impl Code {
     pub fn expected(&self) -> BTreeMap<String, String> {
         match self {
             Code::Adapter(a) => a.expected.clone(),
-            Code::Impact | Code::ResultsFrom(_) => BTreeMap::new(),
+            Code::ResultsFrom(_, expected) => expected.clone(),
+            Code::Impact => BTreeMap::new(),
         }
     }
 }

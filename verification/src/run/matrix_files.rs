@@ -90,6 +90,12 @@ pub fn summary_text(m: &Matrix) -> String {
     }
     // The N/E column only when another code ran (impact's own matrix.txt is as it was).
     let with_ne = !m.codes.is_empty();
+    let w = per
+        .keys()
+        .map(|k| k.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(20);
     let row = |name: &str, t: &Tally| {
         let ne = if with_ne {
             format!(" {:>5}", t.not_expressible)
@@ -97,11 +103,11 @@ pub fn summary_text(m: &Matrix) -> String {
             String::new()
         };
         format!(
-            "{name:<20} {:>4} {:>6} {:>5} {:>6} {:>5}{ne}\n",
+            "{name:<w$} {:>4} {:>6} {:>5} {:>6} {:>5}{ne}\n",
             t.ok, t.known_fail, t.fail, t.xpass, t.skip
         )
     };
-    let mut out = String::from("\nsuite                 OK  FAIL*  FAIL  XPASS  SKIP");
+    let mut out = format!("\n{:<w$}  OK  FAIL*  FAIL  XPASS  SKIP", "suite");
     out.push_str(if with_ne { "    N/E\n" } else { "\n" });
     for (s, t) in &per {
         out.push_str(&row(s, t));

@@ -112,7 +112,7 @@ impl Plan<'_> {
                 crate::codes::NOT_EXPRESSIBLE
             )),
             Code::Adapter(a) => a.run(scene).map(Arc::new),
-            Code::ResultsFrom(dir) => {
+            Code::ResultsFrom(dir, _) => {
                 crate::codes::results_from::read(dir, &self.names_of(i), scene).map(Arc::new)
             }
         }
