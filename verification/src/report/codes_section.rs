@@ -204,11 +204,11 @@ fn costs(from: &Path) -> String {
             .map_or("-".into(), |c| format!("{:.1} %", 100.0 * (wall - c) / c));
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {wall:.2} | {overhead} | {:.1} | {mine} |",
+            "| {} | {} | {:.0} | {:.0} | {wall:.2} | {overhead} | {:.1} | {mine} |",
             at(r),
             r["code"].as_str().unwrap_or(""),
-            r["n_elements"],
-            r["n_steps"],
+            r["n_elements"].as_f64().unwrap_or(f64::NAN),
+            r["n_steps"].as_f64().unwrap_or(f64::NAN),
             r["ns_per_element_step"].as_f64().unwrap_or(f64::NAN)
         );
     }
@@ -245,7 +245,7 @@ fn side_by_side(
             });
         let why = match label(k).as_str() {
             "OK" => String::new(),
-            _ => k["message"].as_str().unwrap_or("").replace('|', "/"),
+            _ => k["message"].as_str().unwrap_or("").replace('|', "\\|"),
         };
         let _ = writeln!(
             s,
@@ -403,7 +403,7 @@ fn against_the_matrix(code: &Value) -> String {
                 k["reference_source"]
                     .as_str()
                     .unwrap_or("")
-                    .replace('|', "/")
+                    .replace('|', "\\|")
             );
         }
     }
