@@ -114,9 +114,13 @@ impl Adapter {
         let scratch = Scratch::new(&self.name)?;
         let dir = &scratch.0;
         let yaml = dir.join("scene.yaml");
-        let json =
-            serde_json::to_string_pretty(&scene.to_file_value()).map_err(|e| e.to_string())?;
-        std::fs::write(&yaml, scene.to_yaml()).map_err(|e| format!("{}: {e}", yaml.display()))?;
+        let value = scene.to_file_value();
+        let json = serde_json::to_string_pretty(&value).map_err(|e| e.to_string())?;
+        std::fs::write(
+            &yaml,
+            impact_solver::input::scene::scene_text::file_text(&value),
+        )
+        .map_err(|e| format!("{}: {e}", yaml.display()))?;
         std::fs::write(dir.join("scene.json"), json + "\n").map_err(|e| e.to_string())?;
         let log = dir.join("adapter.log");
         let done = process::run(

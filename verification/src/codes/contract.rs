@@ -9,9 +9,10 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use impact_solver::{History, Scene};
+use impact_solver::Scene;
 use serde_json::Value;
 
+use crate::definition::history_csv::read_history;
 use crate::definition::run_data::RunData;
 
 /// The run written in `dir` for `scene` (the derived impact quantities of a checked run,
@@ -101,54 +102,4 @@ fn derived_metrics(scene: &Scene, metrics: &mut BTreeMap<String, f64>) {
 fn read_json(path: &Path) -> Result<Value, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
-}
-
-/// `history.csv`: a header with `time_s` first, then rows of numbers (line and column named
-/// for anything else).
-pub fn read_history(path: &Path) -> Result<History, String> {
-    let at = |line: u64, what: String| format!("{} line {line}: {what}", path.display());
-    let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let columns: Vec<String> = rd
-        .headers()
-        .map_err(|e| at(1, e.to_string()))?
-        .iter()
-        .map(|h| h.trim().to_string())
-        .collect();
-    if columns.first().map(String::as_str) != Some("time_s") {
-        return Err(at(
-            1,
-            format!(
-                "the first column must be time_s (found {:?})",
-                columns.first()
-            ),
-        ));
-    }
-    let mut values = Vec::new();
-    for (row, rec) in rd.records().enumerate() {
-        let line = row as u64 + 2;
-        let rec = rec.map_err(|e| at(line, e.to_string()))?;
-        if rec.len() != columns.len() {
-            return Err(at(
-                line,
-                format!("{} fields, the header has {}", rec.len(), columns.len()),
-            ));
-        }
-        for (col, field) in rec.iter().enumerate() {
-            let x = field.trim().parse::<f64>().map_err(|_| {
-                at(
-                    line,
-                    format!(
-                        "column {} ({}): {field:?} is not a number",
-                        col + 1,
-                        columns[col]
-                    ),
-                )
-            })?;
-            values.push(x);
-        }
-    }
-    if values.is_empty() {
-        return Err(format!("{}: no rows", path.display()));
-    }
-    Ok(History { columns, values })
 }

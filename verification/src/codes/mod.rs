@@ -56,10 +56,7 @@ impl Code {
                 dir.display()
             ));
         }
-        let name = dir
-            .file_name()
-            .map_or("results".into(), |n| n.to_string_lossy().into_owned());
-        let expected = Adapter::load(root, &name)
+        let expected = Adapter::load(root, &folder_name(dir))
             .map(|a| a.expected)
             .unwrap_or_default();
         Ok(Code::ResultsFrom(dir.to_path_buf(), expected))
@@ -70,9 +67,7 @@ impl Code {
         match self {
             Code::Impact => "impact".into(),
             Code::Adapter(a) => a.name.clone(),
-            Code::ResultsFrom(dir, _) => dir
-                .file_name()
-                .map_or("results".into(), |n| n.to_string_lossy().into_owned()),
+            Code::ResultsFrom(dir, _) => folder_name(dir),
         }
     }
 
@@ -110,4 +105,10 @@ impl Code {
             Code::Impact => BTreeMap::new(),
         }
     }
+}
+
+/// The name of results read from `dir`: the folder's own name.
+fn folder_name(dir: &Path) -> String {
+    dir.file_name()
+        .map_or("results".into(), |n| n.to_string_lossy().into_owned())
 }

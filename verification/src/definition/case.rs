@@ -585,6 +585,14 @@ impl Case {
     pub fn id(&self) -> &str {
         &self.file.id.value
     }
+    /// The scene a measure that names none reads: the case's only scene, if it has one.
+    pub fn default_scene(&self) -> Option<&str> {
+        let mut names = self.file.scenes.keys();
+        match (names.next(), names.next()) {
+            (Some(only), None) => Some(only.as_str()),
+            _ => None,
+        }
+    }
     pub fn loc<T>(&self, s: &Spanned<T>) -> Loc {
         Loc::of(&self.path, s)
     }

@@ -9,6 +9,7 @@ pub mod case;
 pub mod check;
 pub mod check_row;
 pub mod gci;
+pub mod history_csv;
 pub mod lint;
 pub mod repo;
 pub mod run_data;

@@ -72,14 +72,11 @@ pub fn reference_ratings(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec
                 let Ok((tb, vb)) = crate::definition::check::read_csv_columns(&run, col) else {
                     continue;
                 };
-                let (lo, hi) = (ta[0].max(tb[0]), ta[ta.len() - 1].min(tb[tb.len() - 1]));
-                let grid: Vec<usize> = (0..ta.len())
-                    .filter(|&i| ta[i] >= lo && ta[i] <= hi)
-                    .collect();
-                let rated = crate::review::diff::rating_of(&ta, &va, &tb, &vb, &grid).map_or_else(
-                    || "not rated (too few common samples, or a flat curve)".to_string(),
-                    |x| {
-                        format!(
+                let rated = crate::review::diff::rating_in_common_window(&ta, &va, &tb, &vb)
+                    .map_or_else(
+                        || "not rated (too few common samples, or a flat curve)".to_string(),
+                        |x| {
+                            format!(
                             "{:.3} ({}; corridor {:.3}, phase {:.3}, magnitude {:.3}, slope {:.3})",
                             x.overall,
                             crate::review::iso18571::Grade::of(x.overall).name(),
@@ -88,8 +85,8 @@ pub fn reference_ratings(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec
                             x.magnitude,
                             x.slope
                         )
-                    },
-                );
+                        },
+                    );
                 out.push(format!("{s} {col} against {r}: ISO/TS 18571 {rated}"));
             }
         }

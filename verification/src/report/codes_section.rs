@@ -13,7 +13,7 @@ use std::path::Path;
 use impact_plots::line_plot::{column_axis, svg_plot, Axis, Series};
 use serde_json::Value;
 
-use crate::codes::contract::read_history;
+use crate::definition::history_csv::read_history;
 use crate::review::iso18571::Grade;
 
 /// The section's context: `present` (another code ran), its Markdown and HTML.
@@ -331,8 +331,8 @@ fn plots(case: &Value, codes: &[Value], (from, root): (&Path, &Path), out: &Path
             );
             let file = format!(
                 "plots/codes-{}-{}-{i}-{scene}.svg",
-                slug(&suite),
-                slug(&name)
+                crate::report::page::slug(&suite),
+                crate::report::page::slug(&name)
             );
             if std::fs::write(out.join(&file), &svg).is_ok() {
                 let _ = writeln!(s, "![{title}]({file})\n");
@@ -350,12 +350,7 @@ fn ratings(column: &str, histories: &[(String, Vec<f64>, Vec<f64>)]) -> String {
     };
     let mut s = format!("| {column} against impact's | ISO/TS 18571 | grade | corridor | phase | magnitude | slope |\n|---|---|---|---|---|---|---|\n");
     for (code, tb, vb) in histories.iter().filter(|h| h.0 != "impact") {
-        let lo = ta[0].max(tb[0]);
-        let hi = ta[ta.len() - 1].min(tb[tb.len() - 1]);
-        let grid: Vec<usize> = (0..ta.len())
-            .filter(|&i| ta[i] >= lo && ta[i] <= hi)
-            .collect();
-        match crate::review::diff::rating_of(ta, va, tb, vb, &grid) {
+        match crate::review::diff::rating_in_common_window(ta, va, tb, vb) {
             Some(r) => {
                 let _ = writeln!(
                     s,
@@ -408,10 +403,4 @@ fn against_the_matrix(code: &Value) -> String {
         }
     }
     s + "\n"
-}
-
-fn slug(s: &str) -> String {
-    s.chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-        .collect()
 }

@@ -57,7 +57,8 @@ pub fn environment(repo: &Repo, wall_s: f64, jobs: usize) -> serde_json::Value {
 const HTML_TEMPLATE: &str = include_str!("../../templates/report.html.j2");
 const MD_TEMPLATE: &str = include_str!("../../templates/report.md.j2");
 
-fn slug(s: &str) -> String {
+/// A file-name-safe form of a suite or case name (ASCII letters and digits, `-` for the rest).
+pub(crate) fn slug(s: &str) -> String {
     s.chars()
         .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
         .collect()

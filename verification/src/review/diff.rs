@@ -426,6 +426,17 @@ fn column_diff(
     }
 }
 
+/// B rated against A by ISO/TS 18571 on A's rows within the window both cover (see
+/// [`rating_of`]); None where the standard cannot rate the pair. For histories compared
+/// outside `impact diff` (another code's, a reference curve) that may start and end apart.
+pub fn rating_in_common_window(ta: &[f64], va: &[f64], tb: &[f64], vb: &[f64]) -> Option<Rating> {
+    let (lo, hi) = (ta.first()?.max(*tb.first()?), ta.last()?.min(*tb.last()?));
+    let grid: Vec<usize> = (0..ta.len())
+        .filter(|&i| ta[i] >= lo && ta[i] <= hi)
+        .collect();
+    rating_of(ta, va, tb, vb, &grid)
+}
+
 /// B's column rated against A's by ISO/TS 18571 ([`crate::review::iso18571`]): both
 /// interpolated linearly onto as many equally spaced times as A has rows in the common
 /// window, from its first to its last. The standard samples a crash pulse of ~150 ms at

@@ -42,43 +42,17 @@ pub fn json_kind(v: &Value) -> &'static str {
     }
 }
 
-/// (name, values) per column of a history CSV file, `time_s` first.
+/// (name, values) per column of a history CSV file, `time_s` first
+/// ([`crate::definition::history_csv::read_columns`]).
 pub fn history_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>> {
-    let mut rd = csv::Reader::from_path(path).with_context(|| {
-        format!(
+    if !path.is_file() {
+        bail!(
             "{}: cannot read (is {} the --out folder of `impact simulate`?)",
             path.display(),
             path.parent().unwrap_or(Path::new(".")).display()
-        )
-    })?;
-    let names: Vec<String> = rd
-        .headers()
-        .with_context(|| format!("{}: no header", path.display()))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    if names.first().map(String::as_str) != Some("time_s") {
-        bail!("{}: the first column is not time_s", path.display());
+        );
     }
-    let mut cols: Vec<(String, Vec<f64>)> = names.into_iter().map(|n| (n, Vec::new())).collect();
-    for (row, rec) in rd.records().enumerate() {
-        let rec = rec.with_context(|| format!("{}: row {}", path.display(), row + 2))?;
-        for (c, field) in rec.iter().enumerate() {
-            let x: f64 = field.trim().parse().with_context(|| {
-                format!(
-                    "{}: row {}, column {}: {field:?} is not a number",
-                    path.display(),
-                    row + 2,
-                    cols[c].0
-                )
-            })?;
-            cols[c].1.push(x);
-        }
-    }
-    if cols[0].1.is_empty() {
-        bail!("{}: no rows", path.display());
-    }
-    Ok(cols)
+    crate::definition::history_csv::read_columns(path).map_err(anyhow::Error::msg)
 }
 
 /// Refuses a history that cannot be compared: a value that is not finite (NaN, inf), or a

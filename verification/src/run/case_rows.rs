@@ -214,16 +214,11 @@ pub(super) fn case_result(
         .iter()
         .map(|(k, v)| (k.clone(), v.value.clone()))
         .collect();
-    let default_scene = if case.file.scenes.len() == 1 {
-        case.file.scenes.keys().next().map(|s| s.as_str())
-    } else {
-        None
-    };
     let ctx = Context {
         results,
         series: &series,
         root: &repo.root,
-        default_scene,
+        default_scene: case.default_scene(),
     };
     let case_skip = case.file.skip.as_ref().filter(|s| s.value.is_skip());
     let evaluated: Vec<&crate::definition::case::CheckFile> = case

@@ -122,6 +122,17 @@ pub struct Outcome {
     )>,
 }
 
+impl CaseResult {
+    /// `NAME:` before the suite on another code's rows (matrix.txt's notes, JUnit), nothing
+    /// on impact's.
+    pub fn code_prefix(&self) -> String {
+        match self.code.as_str() {
+            "impact" => String::new(),
+            code => format!("{code}:"),
+        }
+    }
+}
+
 impl Matrix {
     pub fn all_checks(&self) -> impl Iterator<Item = (&CaseResult, &CheckResult)> {
         self.cases

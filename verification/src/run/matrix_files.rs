@@ -82,10 +82,7 @@ pub fn matrix_text(m: &Matrix) -> String {
 pub fn summary_text(m: &Matrix) -> String {
     let mut per: BTreeMap<String, Tally> = BTreeMap::new();
     for (c, k) in m.all_codes_checks() {
-        let name = match c.code.as_str() {
-            "impact" => c.suite.clone(),
-            code => format!("{code}:{}", c.suite),
-        };
+        let name = format!("{}{}", c.code_prefix(), c.suite);
         per.entry(name).or_default().add(Verdict::of_check(k));
     }
     // The N/E column only when another code ran (impact's own matrix.txt is as it was).
@@ -139,10 +136,7 @@ pub fn summary_text(m: &Matrix) -> String {
             } else {
                 k.message.clone()
             };
-            let code = match c.code.as_str() {
-                "impact" => String::new(),
-                code => format!("{code}:"),
-            };
+            let code = c.code_prefix();
             format!(
                 "  {} {code}{}/{}/{}: {message}{known}",
                 v.label(),
@@ -166,10 +160,7 @@ pub fn junit_xml(m: &Matrix) -> Result<String, String> {
     let mut report = Report::new("impact-verify");
     let other = m.codes.iter().flat_map(|code| code.cases.iter());
     for c in m.cases.iter().chain(other) {
-        let prefix = match c.code.as_str() {
-            "impact" => String::new(),
-            code => format!("{code}:"),
-        };
+        let prefix = c.code_prefix();
         let mut suite = TestSuite::new(format!("{prefix}{}/{}", c.suite, c.case));
         for k in &c.checks {
             let row = crate::definition::check_row::CheckRow::of(k);

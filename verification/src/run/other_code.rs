@@ -26,16 +26,8 @@ pub fn judge(
     r.known_failure = expected
         .get(&format!("{}/{}/{}", case.suite, case.name, k.id))
         .cloned();
-    let default_scene = (case.file.scenes.len() == 1)
-        .then(|| case.file.scenes.keys().next().cloned())
-        .flatten();
     let mut read = Vec::new();
-    scenes_read(
-        &k.measure.value,
-        default_scene.as_deref(),
-        results,
-        &mut read,
-    );
+    scenes_read(&k.measure.value, case.default_scene(), results, &mut read);
     let why = read.iter().find_map(|name| {
         if case.file.scenes.get(name).is_some_and(|s| s.value.builtin.is_some()) {
             return Some(format!(
@@ -64,16 +56,13 @@ pub fn judge(
 /// modal solution, a closed form). A builtin only measured is impact's own computation, N/E on
 /// another code, and is not run for it.
 pub fn referenced_builtins(case: &Case) -> BTreeSet<String> {
-    let default_scene = (case.file.scenes.len() == 1)
-        .then(|| case.file.scenes.keys().next().cloned())
-        .flatten();
     let mut read = Vec::new();
     for k in &case.file.checks {
         let Some(r) = &k.value.reference else {
             continue;
         };
         if let Some(m) = &r.value.metric {
-            scenes_read(m, default_scene.as_deref(), &BTreeMap::new(), &mut read);
+            scenes_read(m, case.default_scene(), &BTreeMap::new(), &mut read);
         }
         if let Some(s) = r.value.history.as_ref().and_then(|h| h.scene.clone()) {
             read.push(s);

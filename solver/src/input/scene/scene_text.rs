@@ -39,15 +39,20 @@ impl Scene {
         Value::Object(doc)
     }
 
-    /// [`Scene::to_file_value`] as YAML text, opened by the schema line editors read.
+    /// [`Scene::to_file_value`] as YAML text ([`file_text`]).
     pub fn to_yaml(&self) -> String {
-        let body = serde_saphyr::to_string(&self.to_file_value())
-            .unwrap_or_else(|e| format!("# not written: {e}\n"));
-        format!(
-            "# yaml-language-server: $schema=scene.schema.json\n\
-             # The scene as validated and resolved by impact (every default written out).\n{body}"
-        )
+        file_text(&self.to_file_value())
     }
+}
+
+/// A scene's mapping ([`Scene::to_file_value`]) as YAML text, opened by the schema line
+/// editors read.
+pub fn file_text(value: &Value) -> String {
+    let body = serde_saphyr::to_string(value).unwrap_or_else(|e| format!("# not written: {e}\n"));
+    format!(
+        "# yaml-language-server: $schema=scene.schema.json\n\
+         # The scene as validated and resolved by impact (every default written out).\n{body}"
+    )
 }
 
 fn material_value(scene: &Scene) -> Value {
