@@ -70,7 +70,7 @@ def wedge_row(mesh, w, blocks, k, factor):
     row["contact_force_N"] = (rf_off[1] + rf_axis[1]) * factor  # totals print global dofs
     foot = nodal(block_at(blocks, "U", "NFOOTOFF", k)[1])
     row["foot_radius_m"] = max(w.radius[n] + v[0] for n, v in foot.items())
-    row["bar_length_m"] = mesh.h + row["top_uy_m"]
+    row["bar_length_m"] = mesh.h + row["top_uy_m"] - row["bottom_uy_m"]
     return row
 
 
@@ -93,7 +93,7 @@ def row_at(s, mesh, probes, blocks, k, factor, launch):
         row["contact_force_N"] = block_at(blocks, "RF", "NFOOT", k)[1][0][1] * factor
         foot = nodal(block_at(blocks, "U", "NFOOT", k)[1])
         row["foot_radius_m"] = max(mesh.ccx_xy(n - 1)[0] + v[0] for n, v in foot.items())
-        row["bar_length_m"] = mesh.h + row["top_uy_m"]
+        row["bar_length_m"] = mesh.h + row["top_uy_m"] - row["bottom_uy_m"]
     else:
         row["contact_force_N"] = load_force(s, row["time_s"])
     if probes:

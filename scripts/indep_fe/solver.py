@@ -35,7 +35,7 @@ TEMPERATURE_SUFFIX = "temperature_K"         # with its thermal part
 
 IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
 SURFACE_COLUMNS = ["contact_half_width_m", "nodes_in_contact"]
-WALL_COLUMNS = ["foot_radius_m", "bar_length_m"]
+WALL_COLUMNS = ["foot_radius_m", "bar_length_m", "contact_radius_m", "bearing_force_N"]
 # Blow-up guard (ALGORITHM.md section 7): imbalance above this multiple of the largest energy
 # scale reached so far stops the run as unstable; for energy-consistent scenes (force node =
 # datum node, a pulse, the surface coupling) 0.1 of it does, from step 100 on.
@@ -417,7 +417,7 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     wall = None
     if scene.wall is not None:      # section 5c
         wall = RigidWall(pm.coords, pl.inv_m, pl.m_dof[0::2], s, pm.coords[pm.bottom][0],
-                         scene.plate.thickness, pm.top)
+                         scene.plate.thickness, pm.top, pm.bottom)
         v_half = wall.launch(scene.wall.velocity)
     F_last = 0.0
     W_ext = 0.0
@@ -574,7 +574,7 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
         ivs = contact.intervals
         release = ivs[-1][1] if ivs and load == 0.0 else None
         eqps = float(np.max(material.k)) if scene.material.plasticity is not None else None
-        summary["wall"] = wall.summary(u, v_new, totals["peak_F"], release, wall_row[1],
+        summary["wall"] = wall.summary(v_new, totals["peak_F"], release, wall_row,
                                        scene.plate, eqps)
     return Result(columns, rows, summary)
 

@@ -1,6 +1,7 @@
 """The rigid, frictionless planar wall y = 0 (ALGORITHM.md section 5c), written from that text:
 kinematic enforcement on every node with a free u_y, the wall's dissipation from the impulse
-times the mean of the velocities before and after, the foot radius and the bar's length.
+times the mean of the velocities before and after, the bearing force (the body's own force on
+the held nodes), the foot radius, the contact radius and the bar's length.
 SI units: forces N and energies J of the whole body (the symmetry factor s applied)."""
 from __future__ import annotations
 
@@ -11,18 +12,21 @@ TOUCH = 1e-9     # a node lower than TOUCH h touches the wall (h the body's thic
 
 class RigidWall:
     def __init__(self, coords: np.ndarray, inv_m: np.ndarray, m_node: np.ndarray, s: float,
-                 axis_x: float, thickness: float, top: int):
+                 axis_x: float, thickness: float, top: int, bottom: int):
         self.X, self.Y = coords[:, 0].copy(), coords[:, 1].copy()
         self.free = inv_m[1::2] != 0.0          # nodes with a free u_y
         self.im = inv_m[1::2]
         self.m = m_node
-        self.s, self.axis_x, self.touch, self.top = s, axis_x, TOUCH * thickness, top
+        self.s, self.axis_x, self.touch = s, axis_x, TOUCH * thickness
+        self.top, self.bottom = top, bottom
         self.R = np.zeros(self.X.size)          # the wall's force on each u_y at t_n, N
         self.done = 0.0                         # sum_{k<n} W_k, J
         self.W = 0.0                            # W_n, J
         self.share = 0.0                        # c_n: 0 at n = 0, then 1/2
         self.touched = np.zeros(self.X.size, dtype=bool)
-        self.max_touching = 0.0
+        self.bearing = 0.0                      # B_n = s sum of f_int on the held nodes, N
+        self.max_bearing = 0.0
+        self.max_foot = 0.0
 
     def launch(self, velocity: float) -> np.ndarray:
         """v_0: -velocity on every free u_y (m/s), per dof."""
@@ -44,6 +48,8 @@ class RigidWall:
         v_wall = -y / dt
         self.R = np.where(hit, self.m * (v_wall - v_free) / h, 0.0)
         self.W = self.s * float(np.sum(h * self.R * 0.5 * (v_half[1::2] + v_wall)))
+        self.bearing = self.s * float(np.sum(np.where(hit, f_int[1::2], 0.0)))
+        self.max_bearing = max(self.max_bearing, self.bearing)
         return self.s * float(np.sum(self.R))
 
     def apply(self, f_ext: np.ndarray) -> None:
@@ -54,29 +60,35 @@ class RigidWall:
         """The wall's dissipation at t_n, J."""
         return -(self.done + self.share * self.W)
 
-    def reading(self, u: np.ndarray) -> tuple[float, float]:
-        """foot_radius_m (nodes touching the wall now) and bar_length_m at u_n."""
+    def reading(self, u: np.ndarray) -> tuple[float, float, float, float]:
+        """The history's wall columns at u_n: foot_radius_m (the nodes that have touched the
+        wall), bar_length_m (top minus bottom axis node), contact_radius_m (the nodes touching
+        it now) and bearing_force_N."""
         on = self.Y + u[1::2] <= self.touch
         self.touched |= on
         r = self.axis_x - (self.X + u[0::2])
-        radius = float(np.max(r[on])) if on.any() else 0.0
-        self.max_touching = max(self.max_touching, radius)
-        return radius, float(self.Y[self.top] + u[2 * self.top + 1])
-
-    def summary(self, u: np.ndarray, v: np.ndarray, peak: float, release: float | None,
-                length: float, plate, eqps: float | None) -> dict:
-        """summary.json's wall (section 5c); v is v_{n+1/2} of the last step."""
-        r = self.axis_x - (self.X + u[0::2])
+        contact = float(np.max(r[on])) if on.any() else 0.0
         foot = float(np.max(r[self.touched])) if self.touched.any() else 0.0
+        self.max_foot = max(self.max_foot, foot)
+        y = self.Y + u[1::2]
+        return foot, float(y[self.top] - y[self.bottom]), contact, self.bearing
+
+    def summary(self, v: np.ndarray, peak: float, release: float | None,
+                row: tuple[float, float, float, float], plate, eqps: float | None) -> dict:
+        """summary.json's wall (section 5c) from the last row's reading; v is v_{n+1/2} of the
+        last step."""
+        foot, length = row[0], row[1]
+        rebound = float(np.sum(self.m * v[1::2]) / np.sum(self.m)) if release is not None else None
         return {
-            "peak_force_N": peak,
+            "peak_force_N": self.max_bearing,
+            "peak_step_force_N": peak,
             "release_time_s": release,
             "final_length_m": length,
             "length_ratio": length / plate.thickness,
             "foot_radius_m": foot,
             "foot_radius_ratio": foot / (0.5 * plate.length),
-            "max_foot_radius_m": self.max_touching,
-            "rebound_velocity_mps": float(np.sum(self.m * v[1::2]) / np.sum(self.m)),
+            "max_foot_radius_m": self.max_foot,
+            "rebound_velocity_mps": rebound,
             "dissipated_energy_J": self.energy,
             "max_equivalent_plastic_strain": eqps,
         }

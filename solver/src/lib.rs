@@ -35,7 +35,7 @@ pub use time_loop::{
 
 pub use input::error::{Error, Result};
 pub use input::scene::Scene;
-pub use run::summary::Summary;
+pub use run::summary::{Summary, WallSummary};
 pub use run::{simulate, simulate_into, simulate_on, simulate_within, Outcome};
 pub use time_loop::history::{History, HistorySink};
 pub use time_loop::observer::{Observer, Quiet};

@@ -587,17 +587,10 @@ fn parse_memory(text: &str) -> Result<f64, String> {
 }
 
 fn print_summary(s: &impact_solver::Summary) {
-    println!("impulse                 {:>14.6e} N s", s.impulse);
-    println!("peak contact force      {:>14.6e} N", s.peak_contact_force);
-    println!(
-        "max plate displacement  {:>14.6e} m",
-        s.max_plate_displacement
-    );
-    println!(
-        "contact duration        {:>14.6e} s ({} interval(s))",
-        s.contact_duration,
-        s.contact_intervals.len()
-    );
+    match &s.wall {
+        Some(wall) => print_wall(wall),
+        None => print_plate(s),
+    }
     if let Some(v) = s.final_impactor_velocity {
         println!("final impactor velocity {:>14.6e} m/s", v);
     }
@@ -622,4 +615,46 @@ fn print_summary(s: &impact_solver::Summary) {
         "{step}, {} steps, {} elements, {:.3} s wall ({:.1} ns per element-step)",
         s.n_steps, s.n_elements, s.wall_time, s.ns_per_element_step
     );
+}
+
+/// A plate's answers: the impulse, the peak force, the deflection, the contact.
+fn print_plate(s: &impact_solver::Summary) {
+    println!("impulse                 {:>14.6e} N s", s.impulse);
+    println!("peak contact force      {:>14.6e} N", s.peak_contact_force);
+    println!(
+        "max plate displacement  {:>14.6e} m",
+        s.max_plate_displacement
+    );
+    println!(
+        "contact duration        {:>14.6e} s ({} interval(s))",
+        s.contact_duration,
+        s.contact_intervals.len()
+    );
+}
+
+/// A body on the rigid wall (a Taylor bar): its length, foot, release and rebound, the wall's
+/// bearing force and dissipation (ALGORITHM.md 5c).
+fn print_wall(w: &impact_solver::WallSummary) {
+    println!(
+        "final length            {:>14.6e} m ({:.4} of the initial)",
+        w.final_length, w.length_ratio
+    );
+    println!(
+        "foot radius             {:>14.6e} m ({:.4} of the initial; largest {:.6e} m)",
+        w.foot_radius, w.foot_radius_ratio, w.max_foot_radius
+    );
+    match (w.release_time, w.rebound_velocity) {
+        (Some(t), Some(v)) => println!(
+            "left the wall at        {t:>14.6e} s, rebounding at {v:.6e} m/s"
+        ),
+        _ => println!("left the wall at                  never (on the wall at the end)"),
+    }
+    println!(
+        "peak bearing force      {:>14.6e} N (one step's largest, landings included: {:.6e} N)",
+        w.peak_force, w.peak_step_force
+    );
+    println!("wall dissipation        {:>14.6e} J", w.dissipated_energy);
+    if let Some(e) = w.max_equivalent_plastic_strain {
+        println!("max equivalent plastic  {e:>14.6e} (-)");
+    }
 }

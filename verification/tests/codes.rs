@@ -236,7 +236,7 @@ fn a_crash_a_hang_and_garbage_are_one_clear_message_each() {
         ("hang", "killed after its time limit of 1 s", 1.0),
         (
             "garbage",
-            "history.csv line 3: column 2 (mid_uy_m): \"oops\" is not a number",
+            "history.csv: row 3, column mid_uy_m: \"oops\" is not a number (field 2 of the row)",
             60.0,
         ),
     ] {

@@ -50,6 +50,12 @@ pub const YIELD_STRESS_MIN: f64 = 1.0e5;
 /// Impactor speeds (m/s) above this are no low-velocity impact (no equation of state, no
 /// erosion here); 10 m/s in mm/s is 10 000.
 pub const VELOCITY_MAX: f64 = 1.0e3;
+/// A body's speed onto the rigid wall (m/s) above this is beyond the Taylor tests' range
+/// (published shots reach about 600 m/s) and this solver's (no equation of state).
+pub const WALL_VELOCITY_MAX: f64 = 1.0e3;
+/// Initial temperatures (K) below this look like degrees Celsius (20 C is 293.15 K); the
+/// coldest Taylor tests are at liquid nitrogen's 77 K.
+pub const TEMPERATURE_MIN: f64 = 70.0;
 /// VTK field output beyond this many bytes is announced with its size.
 pub const FIELD_BYTES_WARNING: f64 = 1.0e9;
 /// The estimated stable step is within this factor of the solver's own (budget.rs); a history
@@ -63,6 +69,7 @@ pub fn warnings(scene: &Scene, text: Option<&str>) -> Vec<Warning> {
         found: Vec::new(),
     };
     w.units();
+    w.rate_and_heat();
     w.options();
     w.output();
     if let Some(text) = text {
@@ -335,6 +342,30 @@ impl Finder<'_> {
         }
     }
 
+    /// Johnson-Cook's inputs that do nothing or look like Celsius, and the wall's speed.
+    fn rate_and_heat(&mut self) {
+        const JC: &str = "material.plasticity.rate.johnson_cook";
+        let thermal = self.scene.rate_law().and_then(|r| r.thermal()).copied();
+        if thermal.is_none() && self.given(&format!("{JC}.m")) {
+            let m = self.value(&format!("{JC}.m")).unwrap_or(f64::NAN);
+            self.warn(&format!("{JC}.m"), shown(m), format!(
+                "m does nothing without {JC}.thermal: the thermal softening needs a temperature, which only the heating block gives (add thermal: {{initial_temperature, melting_temperature, specific_heat, taylor_quinney}}, or remove m)"
+            ));
+        }
+        if let Some(t) = thermal.filter(|t| t.initial_temperature < TEMPERATURE_MIN) {
+            self.warn(&format!("{JC}.thermal.initial_temperature"), shown(t.initial_temperature), format!(
+                "below {TEMPERATURE_MIN} K: temperatures are in kelvin, and this looks like degrees Celsius (20 C is 293.15 K); then melting_temperature {} is likely Celsius too (add 273.15 to both)",
+                shown(t.melting_temperature)
+            ));
+        }
+        if let Some(w) = self.scene.wall().filter(|w| w.velocity > WALL_VELOCITY_MAX) {
+            self.warn("load.wall.velocity", shown(w.velocity), format!(
+                "above {} m/s: beyond the Taylor tests' range and this solver's (no equation of state, no erosion); velocities are in m/s",
+                shown(WALL_VELOCITY_MAX)
+            ));
+        }
+    }
+
     /// Any other number beyond [`EXTREME`] in magnitude.
     fn extremes(&mut self) {
         let (tiny, huge) = EXTREME;
@@ -499,6 +530,30 @@ mod tests {
         );
         let w = one(|s| s.replace("fields: {every: 1.0e-4}", "fields: {every: 1.0e-12}"));
         assert!(w.contains("a VTK field frame every step, about"), "{w}");
+    }
+
+    /// Issue 40's slips on the Johnson-Cook scene of the code-to-code gate and the Taylor bar:
+    /// `m` without `thermal` (ignored), temperatures in Celsius (a bar 273 K colder, its flow
+    /// stress far too high), a bar at 5000 m/s; each warns once, naming its field.
+    #[test]
+    fn johnson_cook_inputs_that_do_nothing_or_look_like_celsius_warn() {
+        const JC: &str = include_str!("../../../scripts/ci-scenes/impact-plastic-johnson-cook.yaml");
+        const TAYLOR: &str = include_str!("../../../verification/scenes/taylor-bar.yaml");
+        let read = |text: String| {
+            let scene = Scene::from_yaml(&text, Path::new("s.yaml")).expect("a valid scene");
+            scene.warnings.iter().map(ToString::to_string).collect::<Vec<_>>()
+        };
+        assert!(read(JC.to_string()).is_empty());
+        let thermal = JC.lines().find(|l| l.contains("thermal:")).unwrap();
+        let w = read(JC.replace(thermal, ""));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("johnson_cook.m = 1.1: m does nothing without"), "{w:?}");
+        let w = read(JC.replace("initial_temperature: 293.15, melting_temperature: 1813.15", "initial_temperature: 20.0, melting_temperature: 1540.0"));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("initial_temperature = 20: below 70 K") && w[0].contains("melting_temperature 1540"), "{w:?}");
+        let w = read(TAYLOR.replace("velocity: 227.0", "velocity: 5000.0"));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert!(w[0].contains("load.wall.velocity = 5000: above 1000 m/s"), "{w:?}");
     }
 
     #[test]

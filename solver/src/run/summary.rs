@@ -168,29 +168,43 @@ pub struct Summary {
 /// the `contact_force_N` column.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct WallSummary {
-    /// The largest wall force, N (the first step's is the bottom row's stop: `2 m_b V / dt`).
+    /// The largest bearing force (the `bearing_force_N` column: the body's own force on the
+    /// wall through the nodes it holds, without the one-step stops of landing nodes), N. It
+    /// converges as the step falls (ALGORITHM.md 5c).
     #[serde(rename = "peak_force_N")]
     pub peak_force: f64,
+    /// The largest wall force of one step (`peak_contact_force_N`, the `contact_force_N`
+    /// column's peak), N: it holds the kinematic stop of the landing nodes, `m v / h`, an
+    /// artefact of the method that grows as `1 / dt` (the bottom row's at `t_0`:
+    /// `2 m_b V / dt`).
+    #[serde(rename = "peak_step_force_N")]
+    pub peak_step_force: f64,
     /// When the body left the wall for good, s; null while it is still on it at the end.
     #[serde(rename = "release_time_s")]
     pub release_time: Option<f64>,
-    /// The top axis node's current height at the end: the bar's length on the axis, m.
+    /// The bar's length on the axis at the end: the distance between the bottom and the top
+    /// axis nodes (the `bar_length_m` column's last value; after release the gap to the wall
+    /// is not counted), m.
     #[serde(rename = "final_length_m")]
     pub final_length: f64,
     /// `final_length_m / plate.thickness` (-).
     pub length_ratio: f64,
-    /// The largest current distance from the axis, at the end, of a node that touched the wall
-    /// (the foot; the half-width in plane strain), m.
+    /// The foot's radius at the end: the largest current distance from the axis of a node
+    /// that has touched the wall during the run (the side rolled onto it included; the
+    /// `foot_radius_m` column's last value; the half-width in plane strain), m.
     #[serde(rename = "foot_radius_m")]
     pub foot_radius: f64,
     /// `foot_radius_m / (plate.length / 2)` (-).
     pub foot_radius_ratio: f64,
-    /// The largest distance from the axis of a node touching the wall during the run, m.
+    /// The largest foot radius of the run (the `foot_radius_m` column's largest value over
+    /// every step), m: at least `foot_radius_m`.
     #[serde(rename = "max_foot_radius_m")]
     pub max_foot_radius: f64,
-    /// The body's mean velocity away from the wall at the end (momentum over mass), m/s.
+    /// The body's mean velocity away from the wall at the end (momentum over mass, positive
+    /// away from the wall), m/s, once the body has left the wall for good (`release_time_s`
+    /// not null); null while it is still on the wall.
     #[serde(rename = "rebound_velocity_mps")]
-    pub rebound_velocity: f64,
+    pub rebound_velocity: Option<f64>,
     /// The kinetic energy the wall took out (its dissipation, the `contact_energy_J` column), J.
     #[serde(rename = "dissipated_energy_J")]
     pub dissipated_energy: f64,
@@ -203,13 +217,14 @@ impl WallSummary {
         let w = t.wall?;
         let radius = 0.5 * scene.plate.length;
         Some(WallSummary {
-            peak_force: t.peak_force,
+            peak_force: w.peak_bearing_force,
+            peak_step_force: t.peak_force,
             release_time: w.release_time,
             final_length: w.length,
             length_ratio: w.length / scene.plate.thickness,
             foot_radius: w.foot_radius,
             foot_radius_ratio: w.foot_radius / radius,
-            max_foot_radius: w.max_touching_radius,
+            max_foot_radius: w.max_foot_radius,
             rebound_velocity: w.rebound_velocity,
             dissipated_energy: w.dissipated,
             max_equivalent_plastic_strain: w.max_plastic_strain,

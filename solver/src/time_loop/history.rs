@@ -6,7 +6,7 @@
 use crate::input::error::{Error, Result};
 use crate::input::scene::{DtUpdate, Scene};
 use crate::mesh::PlateMesh;
-use crate::physics::contacts::rigid_wall::WallTotals;
+use crate::physics::contacts::rigid_wall::{WallReading, WallTotals};
 use crate::physics::elements::element::Formulation;
 use crate::physics::materials::material::{von_mises, Stress};
 use crate::time_loop::energy::{BalanceMonitor, Energies};
@@ -169,8 +169,8 @@ pub(crate) struct Sample<'a> {
     pub impactor: Option<[f64; 3]>,
     /// Contact half-width (m) and nodes in contact; surface coupling only.
     pub patch: Option<[f64; 2]>,
-    /// Radius of the nodes touching the wall and the bar's length on the axis, m; wall only.
-    pub wall: Option<[f64; 2]>,
+    /// The wall's reading (`WallReading::COLUMNS`); wall only.
+    pub wall: Option<[f64; 4]>,
     /// Mid-span `u_y` at the top, mid-plane and bottom, m.
     pub uy: [f64; 3],
     pub energies: &'a Energies,
@@ -388,7 +388,7 @@ pub fn history_columns(scene: &Scene, probes: &[Probe]) -> Vec<String> {
         c.extend(["contact_half_width_m", "nodes_in_contact"].map(String::from));
     }
     if scene.wall().is_some() {
-        c.extend(["foot_radius_m", "bar_length_m"].map(String::from));
+        c.extend(WallReading::COLUMNS.map(String::from));
     }
     c.extend(["top_uy_m", "mid_uy_m", "bottom_uy_m"].map(String::from));
     let rate = scene.rate_law();

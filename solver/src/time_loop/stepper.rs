@@ -6,11 +6,11 @@
 use std::result::Result as StdResult;
 
 use crate::input::error::{Error, Result};
-use crate::input::scene::{Impactor, Kinematics, Scene};
+use crate::input::scene::{ElementKind, Impactor, Kinematics, Scene};
 use crate::lanes::simd::dispatch;
 use crate::mesh::PlateMesh;
 use crate::physics::contacts::contact::{solve_contact_force, BeyondMaximum, LineContactLaw};
-use crate::physics::contacts::rigid_wall::{RigidWall, WallTotals};
+use crate::physics::contacts::rigid_wall::{RigidWall, WallReading, WallTotals};
 use crate::physics::elements::element::{ElementEnergy, Formulation};
 use crate::physics::impactor::RigidImpactor;
 use crate::physics::load::PrescribedLoad;
@@ -100,7 +100,7 @@ pub(super) struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     pub(super) surface: Option<SurfaceImpact>,
     /// The rigid wall the body flies onto, with its reading at `t_n`: the radius of the nodes
     /// touching it and the top axis node's height (the bar's length), m.
-    wall: Option<(RigidWall, [f64; 2])>,
+    wall: Option<(RigidWall, WallReading)>,
     /// The kinetic energy at `t_0`, J (0 unless the body starts moving: the wall).
     initial_kinetic: f64,
     prescribed: Option<PrescribedLoad>,
@@ -145,7 +145,13 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let wall = scene.wall().map(|spec| {
             let wall = RigidWall::new(mesh, scene.plate.thickness);
             wall.launch(spec.velocity, &model.inverse_mass, &mut v);
-            (wall, [0.0; 2])
+            let reading = WallReading {
+                foot_radius: 0.0,
+                bar_length: 0.0,
+                contact_radius: 0.0,
+                bearing_force: 0.0,
+            };
+            (wall, reading)
         });
         let initial_kinetic = wall
             .as_ref()
@@ -281,10 +287,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         };
         let twice_kinetic = dispatch(self.model.kernel_path.isa(), update);
         if let Some((wall, reading)) = &mut self.wall {
-            *reading = [
-                wall.touching_radius(&self.u),
-                wall.height(self.mesh.top, &self.u),
-            ];
+            *reading = wall.observe(&self.u);
         }
         Energies {
             plate_kinetic: if n > 0 {
@@ -368,14 +371,27 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             time_s: t,
             what: format!(
                 "element {e} (around x = {x:.4e} m, y = {y:.4e} m) has inverted: {} (dt = {:.6e} s, {:.3} of the stable estimate)",
-                match self.scene.kinematics {
-                    Kinematics::Small => "the displacements are no longer small against the mesh (kinematics: finite follows large deformation)",
-                    Kinematics::Finite => "it was crushed or turned inside out (a finer mesh, or q4-sri instead of q4-1pt, may carry the deformation)",
-                },
+                self.inversion_cause(),
                 self.dt,
                 self.dt / self.dt_critical
             ),
         })
+    }
+
+    /// The likeliest cause of an inversion: a step above the stable one first (the
+    /// integration's blow-up inverts elements whatever the kinematics), then the kinematics,
+    /// then the element.
+    fn inversion_cause(&self) -> String {
+        let over = self.dt / self.dt_critical;
+        if over > 1.0 {
+            return format!("the step is {over:.2}x the stable estimate (time.allow_unstable_dt: true), so the central-difference integration is unstable and the inversion is its blow-up: lower time.dt below the stable step");
+        }
+        let remedy = match (self.scene.kinematics, self.scene.mesh.element) {
+            (Kinematics::Small, _) => "the displacements are no longer small against the mesh (kinematics: finite follows large deformation)",
+            (Kinematics::Finite, ElementKind::Q4OnePoint) => "it was crushed or turned inside out (a finer mesh, or q4-sri instead of q4-1pt, may carry the deformation)",
+            (Kinematics::Finite, _) => "it was crushed or turned inside out: the load is beyond what this mesh can carry (a finer mesh where it is crushed, or a load spread over a face instead of a node)",
+        };
+        remedy.to_string()
     }
 
     /// Finite deformation: the run's step is fixed, so the run stops (naming the element)
@@ -411,7 +427,8 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         released: Option<f64>,
         energies: &Energies,
     ) -> Option<WallTotals> {
-        let (wall, [_, length]) = self.wall.as_ref()?;
+        let (wall, reading) = self.wall.as_ref()?;
+        let (max_foot_radius, peak_bearing_force) = wall.maxima();
         let model = &*self.model;
         let n_points = model.formulation.n_elements() * F::POINTS;
         let eqps = (0..n_points).map(|k| {
@@ -420,10 +437,11 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         });
         Some(WallTotals {
             release_time: released,
-            length: *length,
-            foot_radius: wall.foot_radius(&self.u),
-            max_touching_radius: wall.max_touching_radius(),
-            rebound_velocity: RigidWall::mean_velocity(&model.mass, &self.v),
+            length: reading.bar_length,
+            foot_radius: reading.foot_radius,
+            max_foot_radius,
+            peak_bearing_force,
+            rebound_velocity: released.map(|_| RigidWall::mean_velocity(&model.mass, &self.v)),
             dissipated: energies.contact,
             max_plastic_strain: self.scene.is_plastic().then(|| eqps.fold(0.0, f64::max)),
         })
@@ -448,7 +466,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
                 (None, None) => None,
             },
             patch: surface.map(SurfaceImpact::patch),
-            wall: self.wall.as_ref().map(|(_, reading)| *reading),
+            wall: self.wall.as_ref().map(|(_, reading)| reading.values()),
             uy: [uy(self.mesh.top), uy(self.mesh.mid), uy(self.mesh.bottom)],
             energies,
             imbalance,

@@ -8,10 +8,14 @@ use std::path::Path;
 
 use impact_solver::History;
 
-/// (name, values) per column, `time_s` first.
+/// (name, values) per column, `time_s` first. A refusal names the file and the row (the
+/// line of the file: the header is row 1), and for a bad field its column's name and place.
 pub fn read_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
-    let at = |line: u64, what: String| format!("{} line {line}: {what}", path.display());
-    let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let at = |line: u64, what: String| format!("{}: row {line}, {what}", path.display());
+    let mut rd = csv::ReaderBuilder::new()
+        .flexible(true)
+        .from_path(path)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     let names: Vec<String> = rd
         .headers()
         .map_err(|e| at(1, e.to_string()))?
@@ -20,9 +24,9 @@ pub fn read_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
         .collect();
     if names.first().map(String::as_str) != Some("time_s") {
         let found = names.first();
-        return Err(at(
-            1,
-            format!("the first column must be time_s (found {found:?})"),
+        return Err(format!(
+            "{}: the first column is not time_s (found {found:?}; the first column must be time_s)",
+            path.display()
         ));
     }
     let mut cols: Vec<(String, Vec<f64>)> = names.into_iter().map(|n| (n, Vec::new())).collect();
@@ -30,15 +34,15 @@ pub fn read_columns(path: &Path) -> Result<Vec<(String, Vec<f64>)>, String> {
         let line = row as u64 + 2;
         let rec = rec.map_err(|e| at(line, e.to_string()))?;
         if rec.len() != cols.len() {
-            let what = format!("{} fields, the header has {}", rec.len(), cols.len());
+            let what = format!("{} fields where the header has {}", rec.len(), cols.len());
             return Err(at(line, what));
         }
         for (c, field) in rec.iter().enumerate() {
             let x = field.trim().parse::<f64>().map_err(|_| {
                 let what = format!(
-                    "column {} ({}): {field:?} is not a number",
-                    c + 1,
-                    cols[c].0
+                    "column {}: {field:?} is not a number (field {} of the row)",
+                    cols[c].0,
+                    c + 1
                 );
                 at(line, what)
             })?;

@@ -4,7 +4,8 @@
 //! summary that drifts from the force it integrates is noticed in any case that runs an
 //! impact, whichever keys that case checks.
 //!
-//! Per run with contact (an impactor and at least one contact interval), three checks:
+//! Per wall run, the wall's keys against their columns (`wall_invariants.rs`). Per run with
+//! contact (an impactor and at least one contact interval), three checks:
 //! - `contact-state`: the rows whose force is positive are exactly the rows inside the
 //!   summary's `contact_intervals_s` (`[first t_n with F > 0, first later t_n with F = 0)`;
 //!   the last interval closed at the run's end includes it): the count of rows that disagree,
@@ -24,6 +25,8 @@
 use crate::definition::case::Compare;
 use crate::definition::check::{CheckResult, ErrorKind, Status};
 use crate::definition::run_data::RunData;
+
+use super::wall_invariants;
 
 pub const SUITE: &str = "invariants";
 pub const CASE: &str = "history-summary";
@@ -88,7 +91,7 @@ pub fn recompute(run: &RunData) -> Option<Recomputed> {
 }
 
 /// One check row: `computed` against `reference` within `tol` (absolute).
-fn row(
+pub(crate) fn row(
     id: String,
     title: &str,
     (computed, reference, tol): (f64, f64, f64),
@@ -108,7 +111,7 @@ fn row(
         tolerance: format!("abs {tol:.1e}"),
         tolerance_reason: why.into(),
         reference_kind: "invariant".into(),
-        reference_source: "the run's history.csv (time_s, contact_force_N)".into(),
+        reference_source: "the run's own history.csv".into(),
         message: if ok {
             String::new()
         } else {
@@ -153,12 +156,12 @@ pub fn checks(name: &str, r: &Recomputed) -> Vec<CheckResult> {
 
 /// The case's title, requirement (id, text) and problem, for its row of the matrix.
 pub const TITLE: &str =
-    "Every impact run of the matrix - the summary's contact keys against its own history";
+    "Every impact and wall run of the matrix - the summary's contact and wall keys against its own history";
 pub const REQUIREMENT: (&str, &str) = (
     "REQ-INV-HISTORY-SUMMARY",
-    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run.",
+    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run.",
 );
-pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks.";
+pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
 
 /// The case's checks from the matrix's impact runs (`(suite/case/scene, run)`, each run
 /// once), kept when `suite/case/check` contains `filter`.
@@ -170,6 +173,9 @@ pub fn case_checks<'a>(
     for (name, run) in runs {
         if let Some(r) = recompute(run) {
             all.extend(checks(&name, &r));
+        }
+        if let Some(r) = wall_invariants::recompute(run) {
+            all.extend(wall_invariants::checks(&name, &r));
         }
     }
     all.retain(|k| {

@@ -19,3 +19,4 @@ pub mod plan;
 pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
+pub mod wall_invariants;

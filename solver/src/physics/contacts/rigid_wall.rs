@@ -18,6 +18,13 @@
 //! `[t_{n-1/2}, t_{n+1/2}]`), none at `t_0` (over `[t_0, t_{1/2}]`). Forces N and energies J of
 //! the modelled part times the symmetry factor `s` (whole ring in the axisymmetric geometry,
 //! whole `plate.width` in plane strain).
+//!
+//! The wall's force splits in two: `R_i = m (v_wall - v_{n-1/2}) / h + f_i`. The first term
+//! stops the momentum the node brings (a landing node's `m v / h`: the one-step impulse of a
+//! kinematic stop, which grows as `1 / dt`); the second is the body's own force on the node
+//! (`f_int - f_ext`), which the wall bears. Their sum over the held nodes, the bearing force
+//! `B_n = s sum f_i`, is the pressure of the body on the wall; it converges as the step falls,
+//! and the wall's `peak_force_N` is its largest value.
 
 use crate::mesh::PlateMesh;
 
@@ -49,8 +56,48 @@ pub struct RigidWall {
     started: bool,
     /// Whether each node has touched the wall (the foot).
     touched: Vec<bool>,
-    /// The largest [`RigidWall::touching_radius`] so far, m.
-    max_touching: f64,
+    /// The bottom and top axis nodes (the bar's length on the axis is their distance).
+    axis_nodes: [usize; 2],
+    /// The bearing force `B_n` of step `n`, whole body, N.
+    bearing: f64,
+    /// The largest `B_n` so far, N.
+    max_bearing: f64,
+    /// The largest foot radius so far, m.
+    max_foot: f64,
+}
+
+/// What the wall reports at `t_n` (the history's wall columns, section 5c), SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallReading {
+    /// The largest current distance from the axis of a node that has touched the wall, m.
+    pub foot_radius: f64,
+    /// The distance between the bottom and the top axis nodes (the bar's length), m.
+    pub bar_length: f64,
+    /// The largest current distance from the axis of a node touching the wall now, m.
+    pub contact_radius: f64,
+    /// The bearing force `B_n`: the body's own force on the wall through the nodes it holds,
+    /// N (whole body).
+    pub bearing_force: f64,
+}
+
+impl WallReading {
+    /// The history's wall columns, in this order.
+    pub const COLUMNS: [&'static str; 4] = [
+        "foot_radius_m",
+        "bar_length_m",
+        "contact_radius_m",
+        "bearing_force_N",
+    ];
+
+    /// The values of [`WallReading::COLUMNS`].
+    pub fn values(&self) -> [f64; 4] {
+        [
+            self.foot_radius,
+            self.bar_length,
+            self.contact_radius,
+            self.bearing_force,
+        ]
+    }
 }
 
 /// What the wall reports at the end of a run (SI units).
@@ -58,14 +105,17 @@ pub struct RigidWall {
 pub struct WallTotals {
     /// When the body left the wall for good, s (`None`: still on it at the end).
     pub release_time: Option<f64>,
-    /// The top axis node's current height (the bar's length on the axis), m.
+    /// The bar's length on the axis at the end ([`WallReading::bar_length`]), m.
     pub length: f64,
-    /// [`RigidWall::foot_radius`] at the end, m.
+    /// [`WallReading::foot_radius`] at the end, m.
     pub foot_radius: f64,
-    /// The largest radius of a node touching the wall during the run, m.
-    pub max_touching_radius: f64,
-    /// The body's mean velocity away from the wall at the end (`v_{n+1/2}`), m/s.
-    pub rebound_velocity: f64,
+    /// The largest [`WallReading::foot_radius`] of the run, m.
+    pub max_foot_radius: f64,
+    /// The largest [`WallReading::bearing_force`] of the run, N.
+    pub peak_bearing_force: f64,
+    /// The body's mean velocity away from the wall at the end (`v_{n+1/2}`, positive away),
+    /// m/s, once it has left the wall for good (`None` while on it).
+    pub rebound_velocity: Option<f64>,
     /// The kinetic energy the wall took out, J.
     pub dissipated: f64,
     /// The largest equivalent plastic strain over the points at the end (plastic only).
@@ -86,7 +136,10 @@ impl RigidWall {
             share_now: 0.0,
             started: false,
             touched: vec![false; n],
-            max_touching: 0.0,
+            axis_nodes: [mesh.bottom, mesh.top],
+            bearing: 0.0,
+            max_bearing: 0.0,
+            max_foot: 0.0,
         }
     }
 
@@ -120,7 +173,7 @@ impl RigidWall {
         self.work_before += self.work_now;
         self.share_now = if self.started { 0.5 } else { 0.0 };
         self.started = true;
-        let (mut total, mut work) = (0.0, 0.0);
+        let (mut total, mut work, mut bearing) = (0.0, 0.0, 0.0);
         for (node, &[_, y0]) in self.reference.iter().enumerate() {
             let dof = 2 * node + 1;
             self.force[node] = 0.0;
@@ -134,9 +187,12 @@ impl RigidWall {
                 self.force[node] = mass[node] * (v_wall - v_free) / h;
                 total += self.force[node];
                 work += h * self.force[node] * 0.5 * (v[dof] + v_wall);
+                bearing += f_int[dof];
             }
         }
         self.work_now = self.s * work;
+        self.bearing = self.s * bearing;
+        self.max_bearing = self.max_bearing.max(self.bearing);
         self.s * total
     }
 
@@ -152,39 +208,37 @@ impl RigidWall {
         -(self.work_before + self.share_now * self.work_now)
     }
 
-    /// The nodes touching the wall at `u` (m): marks them as the foot, and returns the largest
-    /// current distance of one from the axis (the foot radius in the ring, the half-width in
-    /// plane strain), m (0 when none touches).
-    pub fn touching_radius(&mut self, u: &[f64]) -> f64 {
-        let mut radius: f64 = 0.0;
+    /// The wall's reading at `u` (m): marks the nodes touching the wall (`y <= 1e-9 h`) as
+    /// the foot, and measures the foot, the contact and the bar (section 5c).
+    pub fn observe(&mut self, u: &[f64]) -> WallReading {
+        let (mut contact, mut foot): (f64, f64) = (0.0, 0.0);
         for (node, &[x0, y0]) in self.reference.iter().enumerate() {
+            let radius = self.axis_x - (x0 + u[2 * node]);
             if y0 + u[2 * node + 1] <= self.touch {
                 self.touched[node] = true;
-                radius = radius.max(self.axis_x - (x0 + u[2 * node]));
+                contact = contact.max(radius);
+            }
+            if self.touched[node] {
+                foot = foot.max(radius);
             }
         }
-        self.max_touching = self.max_touching.max(radius);
-        radius
+        self.max_foot = self.max_foot.max(foot);
+        let [bottom, top] = self.axis_nodes;
+        WallReading {
+            foot_radius: foot,
+            bar_length: self.height(top, u) - self.height(bottom, u),
+            contact_radius: contact,
+            bearing_force: self.bearing,
+        }
     }
 
-    /// The largest [`RigidWall::touching_radius`] so far, m.
-    pub fn max_touching_radius(&self) -> f64 {
-        self.max_touching
-    }
-
-    /// The foot's radius at `u` (m): the largest current distance from the axis of a node that
-    /// has touched the wall (after the bar leaves the wall, still its foot), m.
-    pub fn foot_radius(&self, u: &[f64]) -> f64 {
-        self.reference
-            .iter()
-            .enumerate()
-            .filter(|(node, _)| self.touched[*node])
-            .map(|(node, &[x0, _])| self.axis_x - (x0 + u[2 * node]))
-            .fold(0.0, f64::max)
+    /// The largest foot radius and bearing force so far (m, N).
+    pub fn maxima(&self) -> (f64, f64) {
+        (self.max_foot, self.max_bearing)
     }
 
     /// The current height of `node` at `u`, m.
-    pub fn height(&self, node: usize, u: &[f64]) -> f64 {
+    fn height(&self, node: usize, u: &[f64]) -> f64 {
         self.reference[node][1] + u[2 * node + 1]
     }
 

@@ -121,7 +121,10 @@ fn measure(
     let mut m = BTreeMap::new();
     m.insert("contact_duration_s".into(), o.summary.contact_duration);
     m.insert("contact_stress_Pa".into(), stress);
-    m.insert("rebound_velocity_mps".into(), wall.rebound_velocity);
+    let rebound = wall
+        .rebound_velocity
+        .ok_or("wall-bar: the bar did not leave the wall")?;
+    m.insert("rebound_velocity_mps".into(), rebound);
     m.insert("duration_closed_form_s".into(), duration);
     m.insert(
         "stress_closed_form_Pa".into(),
