@@ -152,7 +152,9 @@ pub struct MeshFile {
     /// Half plate with a symmetry plane at mid-span, or the full plate (no unit). Default:
     /// `half`.
     #[serde(default)]
-    pub model: Model,
+    #[schemars(with = "Model")]
+    #[schemars(extend("default" = Model::default()))]
+    pub model: Option<Spanned<Model>>,
     /// Largest over smallest element length along x (-), in [1, 1000], the smallest at
     /// mid-span. Default: 1 (uniform).
     #[serde(default)]
@@ -171,6 +173,13 @@ pub struct MeshFile {
     #[schemars(with = "Option<f64>")]
     #[schemars(extend("default" = 0.0))]
     pub distortion: Option<Num>,
+}
+
+impl MeshFile {
+    /// `model` as given, or its default (`half`).
+    pub fn model(&self) -> Model {
+        self.model.as_ref().map_or(Model::default(), |m| m.value)
+    }
 }
 
 /// What loads the plate: exactly one key naming the load.

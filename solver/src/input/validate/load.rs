@@ -78,9 +78,9 @@ impl Validator<'_> {
             }
             Some(_) => {}
         }
-        if mesh.model == Model::Full {
+        if let Some(model) = mesh.model.as_ref().filter(|m| m.value == Model::Full) {
             return self.fail(
-                &mesh.nx,
+                model,
                 "mesh.model",
                 "full",
                 "must be `half` with load: {wall}: the symmetry line is the bar's axis (axisymmetric) or mid-plane, and the full model's free ends leave x unsupported",

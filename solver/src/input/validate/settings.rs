@@ -26,7 +26,7 @@ impl Validator<'_> {
                 "must be an even integer in [2, 10000] (the mid-plane must be a row of nodes)",
             );
         }
-        if m.model == Model::Full && nx % 2 != 0 {
+        if m.model() == Model::Full && nx % 2 != 0 {
             return self.fail(
                 &m.nx,
                 "mesh.nx",
@@ -71,7 +71,7 @@ impl Validator<'_> {
             nx: nx as usize,
             ny: ny as usize,
             element: m.element,
-            model: m.model,
+            model: m.model(),
             grading,
             hourglass,
             distortion,
