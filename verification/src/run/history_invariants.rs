@@ -4,7 +4,10 @@
 //! summary that drifts from the force it integrates is noticed in any case that runs an
 //! impact, whichever keys that case checks.
 //!
-//! Per wall run, the wall's keys against their columns (`wall_invariants.rs`). Per run with
+//! Per run with contact energy (the nodal law, the surface coupling, the wall), its sign:
+//! `contact-energy-sign`, the column never below zero beyond round-off (a contact takes energy
+//! or stores it; one that gives it is a wrong gap or a pulling force). Per wall run, the
+//! wall's keys against their columns (`wall_invariants.rs`). Per run with
 //! contact (an impactor and at least one contact interval), three checks:
 //! - `contact-state`: the rows whose force is positive are exactly the rows inside the
 //!   summary's `contact_intervals_s` (`[first t_n with F > 0, first later t_n with F = 0)`;
@@ -121,6 +124,44 @@ pub(crate) fn row(
     }
 }
 
+/// Largest relative shortfall below zero of the contact energy allowed: about 250x the largest
+/// measured (-4.0e-17 of the largest kinetic energy, the surface coupling's elastic Table 1
+/// run, over the 60 contact runs of the Taylor and Table 1 cases): the round-off of sums.
+const SIGN_ROUND_OFF: f64 = 1e-14;
+
+/// The contact energy's lowest value over the rows and the run's largest kinetic energy (J),
+/// for a run whose `contact_energy_J` column is not all zero (a contact that stores or
+/// dissipates energy: the nodal law, the surface coupling, the wall).
+pub fn contact_energy_sign(run: &RunData) -> Option<(f64, f64)> {
+    let h = run.history()?;
+    let energy = h.column("contact_energy_J")?;
+    if energy.iter().all(|&e| e == 0.0) {
+        return None;
+    }
+    let kinetic = |name: &str| h.column(name).unwrap_or_default();
+    let (plate, impactor) = (kinetic("plate_kinetic_J"), kinetic("impactor_kinetic_J"));
+    let scale = (0..energy.len())
+        .map(|r| plate.get(r).unwrap_or(&0.0) + impactor.get(r).unwrap_or(&0.0))
+        .fold(0.0, f64::max);
+    Some((energy.into_iter().fold(f64::INFINITY, f64::min), scale))
+}
+
+/// The check of run `name` that its contact never gave energy to the bodies: the contact
+/// energy (the law's stored energy, the surface coupling's springs and its dissipation, the
+/// wall's dissipation) is never below zero beyond round-off. A gap that ignores the nodes'
+/// sideways motion, or a contact that pulls, drives it negative. Seeded slip, 2026-11-28 (the
+/// nose's gap with `d_x` ignoring `u_x`, by editing `nose_contact.rs`): 8 runs of the light
+/// matrix fail it, the elasto-plastic Table 1 surface run at -0.148 J.
+pub fn sign_check(name: &str, (lowest, scale): (f64, f64)) -> CheckResult {
+    let floor = -SIGN_ROUND_OFF * scale;
+    row(
+        format!("{name}: contact-energy-sign"),
+        "lowest contact_energy_J over the rows vs 0 (J): never below it beyond round-off",
+        (lowest.min(0.0), 0.0, -floor),
+        "a contact takes energy or stores it, never gives it: round-off only (1e-14 of the largest kinetic energy, about 250x the largest measured 4.0e-17)",
+    )
+}
+
 /// The three checks of run `name` (`suite/case/scene`).
 pub fn checks(name: &str, r: &Recomputed) -> Vec<CheckResult> {
     let impulse_tol = if r.every_step {
@@ -159,9 +200,9 @@ pub const TITLE: &str =
     "Every impact and wall run of the matrix - the summary's contact and wall keys against its own history";
 pub const REQUIREMENT: (&str, &str) = (
     "REQ-INV-HISTORY-SUMMARY",
-    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run.",
+    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the contact energy shall never fall below zero beyond round-off, for every run with contact energy; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run.",
 );
-pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
+pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every run with contact energy: the contact_energy_J column never below zero beyond round-off (a contact that gives energy: a gap that ignores the nodes' sideways motion, a pulling force). Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
 
 /// The case's checks from the matrix's impact runs (`(suite/case/scene, run)`, each run
 /// once), kept when `suite/case/check` contains `filter`.
@@ -176,6 +217,9 @@ pub fn case_checks<'a>(
         }
         if let Some(r) = wall_invariants::recompute(run) {
             all.extend(wall_invariants::checks(&name, &r));
+        }
+        if let Some(sign) = contact_energy_sign(run) {
+            all.push(sign_check(&name, sign));
         }
     }
     all.retain(|k| {
@@ -273,5 +317,30 @@ mod tests {
             // every 4 steps: within the sampling bound, not seen.
             assert_eq!(failing(&d).len(), usize::from(every == 1), "every {every}");
         }
+    }
+
+    /// The contact energy's sign: round-off below zero passes, a contact that gave the bodies
+    /// a joule (the sideways-gap slip of issue 40) fails; a run without contact energy has no
+    /// check.
+    #[test]
+    fn a_contact_that_gives_energy_fails() {
+        let run = |dip: f64| RunData {
+            histories: BTreeMap::from([(
+                String::new(),
+                History {
+                    columns: ["time_s", "plate_kinetic_J", "contact_energy_J"]
+                        .map(String::from)
+                        .to_vec(),
+                    values: vec![0.0, 100.0, 0.0, 1.0, 90.0, dip, 2.0, 80.0, 5.0],
+                },
+            )]),
+            ..Default::default()
+        };
+        let status = |dip| sign_check("r", contact_energy_sign(&run(dip)).unwrap()).status;
+        assert_eq!(status(-1e-15), Status::Ok);
+        assert_eq!(status(-1.0), Status::Fail);
+        let mut none = run(0.0);
+        none.histories.get_mut("").unwrap().values[8] = 0.0;
+        assert!(contact_energy_sign(&none).is_none());
     }
 }
