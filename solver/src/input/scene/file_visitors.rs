@@ -74,14 +74,14 @@ struct ContactVisitor;
 impl<'de> serde::de::Visitor<'de> for ContactVisitor {
     type Value = ContactFile;
     fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        f.write_str("`nodal`, `surface` or `{surface: {penalty_scale: ...}}`")
+        f.write_str("`nodal`, `surface` or `{surface: {enforcement: penalty, penalty_scale: ...}}`")
     }
     fn visit_str<E: serde::de::Error>(self, v: &str) -> std::result::Result<ContactFile, E> {
         match v {
             "nodal" => Ok(ContactFile::Nodal),
             "surface" => Ok(ContactFile::Surface(SurfaceFile::default())),
             other => Err(E::custom(format!(
-                "unknown contact `{other}`, expected `nodal`, `surface` or `{{surface: {{penalty_scale: ...}}}}`"
+                "unknown contact `{other}`, expected `nodal`, `surface` or `{{surface: {{enforcement: kinematic | penalty, penalty_scale: ...}}}}` (penalty_scale only with enforcement: penalty)"
             ))),
         }
     }
@@ -92,12 +92,17 @@ impl<'de> serde::de::Visitor<'de> for ContactVisitor {
         use serde::de::Error as _;
         let Some(key) = map.next_key::<String>()? else {
             return Err(A::Error::custom(
-                "expected `{surface: {penalty_scale: ...}}`",
+                "expected `{surface: {enforcement: kinematic | penalty, penalty_scale: ...}}` (penalty_scale only with enforcement: penalty)",
             ));
         };
+        if key == "nodal" {
+            return Err(A::Error::custom(
+                "`nodal` takes no settings: write `contact: nodal` (its law is load.impactor.contact_law)",
+            ));
+        }
         if key != "surface" {
             return Err(A::Error::custom(format!(
-                "unknown contact `{key}`, expected `surface: {{penalty_scale: ...}}`"
+                "unknown contact `{key}`, expected `nodal` or `surface: {{enforcement: kinematic | penalty, penalty_scale: ...}}` (penalty_scale only with enforcement: penalty)"
             )));
         }
         let options: Option<SurfaceFile> = map.next_value()?;
