@@ -331,8 +331,8 @@ fn plots(case: &Value, codes: &[Value], (from, root): (&Path, &Path), out: &Path
             );
             let file = format!(
                 "plots/codes-{}-{}-{i}-{scene}.svg",
-                crate::report::page::slug(&suite),
-                crate::report::page::slug(&name)
+                crate::report::file_name::slug(&suite),
+                crate::report::file_name::slug(&name)
             );
             if std::fs::write(out.join(&file), &svg).is_ok() {
                 let _ = writeln!(s, "![{title}]({file})\n");

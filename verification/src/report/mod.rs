@@ -7,6 +7,7 @@ pub mod case_plots;
 pub mod changes_section;
 pub mod codes_section;
 pub mod evidence_section;
+pub mod file_name;
 pub mod html_tokens;
 pub mod markdown;
 pub mod page;

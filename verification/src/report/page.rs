@@ -8,6 +8,8 @@ use crate::definition::check_row::CheckRow;
 use crate::definition::repo::Repo;
 use crate::definition::verdict::Verdict;
 
+use super::file_name::slug;
+
 /// Writes environment.json (commit, rustc, machine, date, wall time) next to results.json.
 pub fn write_environment(repo: &Repo, out: &Path, wall_s: f64, jobs: usize) -> std::io::Result<()> {
     let env = environment(repo, wall_s, jobs);
@@ -56,13 +58,6 @@ pub fn environment(repo: &Repo, wall_s: f64, jobs: usize) -> serde_json::Value {
 
 const HTML_TEMPLATE: &str = include_str!("../../templates/report.html.j2");
 const MD_TEMPLATE: &str = include_str!("../../templates/report.md.j2");
-
-/// A file-name-safe form of a suite or case name (ASCII letters and digits, `-` for the rest).
-pub(crate) fn slug(s: &str) -> String {
-    s.chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
-        .collect()
-}
 
 /// Where the reconstruction of the paper's lost data (issue 5, `scripts/reconstruction/reconstruct.py`)
 /// writes its page, relative to the repository root.

@@ -10,6 +10,7 @@ pub mod case_rows;
 pub mod code_verification;
 pub mod discriminate;
 pub mod history_invariants;
+pub mod invariant_row;
 pub mod job_loop;
 pub mod jobs;
 pub mod matrix;

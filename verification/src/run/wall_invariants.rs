@@ -24,7 +24,7 @@ use crate::definition::check::CheckResult;
 use crate::definition::run_data::RunData;
 use serde_json::Value;
 
-use super::history_invariants::row;
+use super::invariant_row::row;
 
 /// What one wall run's history gives against its summary's `wall`.
 #[derive(Debug, Clone, PartialEq)]
