@@ -416,8 +416,8 @@ def simulate(scene: Scene, progress: bool = False) -> Result:
     u, v_half = np.zeros(ndof), np.zeros(ndof)   # u_n, v_{n-1/2} (v_0 at n = 0)
     wall = None
     if scene.wall is not None:      # section 5c
-        wall = RigidWall(pm.coords, pl.inv_m, pl.m_dof[0::2], s, pm.coords[pm.bottom][0],
-                         scene.plate.thickness, pm.top, pm.bottom)
+        wall = RigidWall(pm.coords, pl.inv_m, pl.m_dof[0::2], s, scene.plate.thickness,
+                         pm.top, pm.bottom)
         v_half = wall.launch(scene.wall.velocity)
     F_last = 0.0
     W_ext = 0.0

@@ -12,12 +12,13 @@ TOUCH = 1e-9     # a node lower than TOUCH h touches the wall (h the body's thic
 
 class RigidWall:
     def __init__(self, coords: np.ndarray, inv_m: np.ndarray, m_node: np.ndarray, s: float,
-                 axis_x: float, thickness: float, top: int, bottom: int):
+                 thickness: float, top: int, bottom: int):
+        """top, bottom: the axis nodes at the bar's two ends (the axis is the bottom one's x)."""
         self.X, self.Y = coords[:, 0].copy(), coords[:, 1].copy()
         self.free = inv_m[1::2] != 0.0          # nodes with a free u_y
         self.im = inv_m[1::2]
         self.m = m_node
-        self.s, self.axis_x, self.touch = s, axis_x, TOUCH * thickness
+        self.s, self.axis_x, self.touch = s, self.X[bottom], TOUCH * thickness
         self.top, self.bottom = top, bottom
         self.R = np.zeros(self.X.size)          # the wall's force on each u_y at t_n, N
         self.done = 0.0                         # sum_{k<n} W_k, J

@@ -47,7 +47,7 @@ def test_free_masses_lose_exactly_their_kinetic_energy():
     coords = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 0.35], [1.0, 0.35]])
     m = np.array([2.0, 2.0, 2.0, 2.0])
     inv_m = np.repeat(1.0 / m, 2)
-    w = RigidWall(coords, inv_m, m, 2.0, 1.0, 1.0, 2, 0)
+    w = RigidWall(coords, inv_m, m, 2.0, 1.0, 3, 1)
     dt = 0.1
     v, u = w.launch(1.0), np.zeros(8)
     ke0 = 2.0 * 0.5 * np.sum(np.repeat(m, 2) * v * v)

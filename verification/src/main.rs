@@ -644,10 +644,13 @@ fn print_wall(w: &impact_solver::WallSummary) {
         w.foot_radius, w.foot_radius_ratio, w.max_foot_radius
     );
     match (w.release_time, w.rebound_velocity) {
-        (Some(t), Some(v)) => println!(
-            "left the wall at        {t:>14.6e} s, rebounding at {v:.6e} m/s"
+        (Some(t), Some(v)) => {
+            println!("left the wall at        {t:>14.6e} s, rebounding at {v:.6e} m/s")
+        }
+        _ => println!(
+            "left the wall at        {:>14} (on the wall at the end)",
+            "never"
         ),
-        _ => println!("left the wall at                  never (on the wall at the end)"),
     }
     println!(
         "peak bearing force      {:>14.6e} N (one step's largest, landings included: {:.6e} N)",

@@ -98,8 +98,8 @@ pub(super) struct Stepper<'a, F: Formulation, M: ConstitutiveModel> {
     impact: Option<Impact<'a>>,
     /// The surface coupling's nose and impactor.
     pub(super) surface: Option<SurfaceImpact>,
-    /// The rigid wall the body flies onto, with its reading at `t_n`: the radius of the nodes
-    /// touching it and the top axis node's height (the bar's length), m.
+    /// The rigid wall the body flies onto, with its reading at `t_n` (the history's wall
+    /// columns).
     wall: Option<(RigidWall, WallReading)>,
     /// The kinetic energy at `t_0`, J (0 unless the body starts moving: the wall).
     initial_kinetic: f64,
@@ -145,13 +145,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let wall = scene.wall().map(|spec| {
             let wall = RigidWall::new(mesh, scene.plate.thickness);
             wall.launch(spec.velocity, &model.inverse_mass, &mut v);
-            let reading = WallReading {
-                foot_radius: 0.0,
-                bar_length: 0.0,
-                contact_radius: 0.0,
-                bearing_force: 0.0,
-            };
-            (wall, reading)
+            (wall, WallReading::default())
         });
         let initial_kinetic = wall
             .as_ref()

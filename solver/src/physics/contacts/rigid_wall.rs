@@ -66,8 +66,9 @@ pub struct RigidWall {
     max_foot: f64,
 }
 
-/// What the wall reports at `t_n` (the history's wall columns, section 5c), SI units.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What the wall reports at `t_n` (the history's wall columns, section 5c), SI units; all 0
+/// before the first step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WallReading {
     /// The largest current distance from the axis of a node that has touched the wall, m.
     pub foot_radius: f64,
