@@ -15,7 +15,7 @@
 //!   force was the landing's one-step stop, now `peak_step_force_N`.)
 //! - `dissipation`: `wall.dissipated_energy_J` is the last row's `contact_energy_J`, exact.
 //! - `release`: `wall.release_time_s` is null exactly when the last row's wall force is
-//!   positive, and `wall.rebound_velocity_mps` is null exactly when `release_time_s` is (a
+//!   non-zero (positive on a resting body, negative when `hold_face` pulls the face back), and `wall.rebound_velocity_mps` is null exactly when `release_time_s` is (a
 //!   rebound reported for a bar still on the wall, the old definition, counts 1).
 //!
 //! Exact means the same `f64`: the summary and the history are written from the same value.
@@ -56,7 +56,7 @@ pub fn recompute(run: &RunData) -> Option<WallRecomputed> {
     let every_step = s.get("n_steps")?.as_u64()? + 1 == t.len() as u64;
     let released = !wall.get("release_time_s")?.is_null();
     let rebound = !wall.get("rebound_velocity_mps")?.is_null();
-    let on_wall = *force.last()? > 0.0;
+    let on_wall = *force.last()? != 0.0;
     Some(WallRecomputed {
         at_end: [
             (key("final_length_m")?, last("bar_length_m")?),

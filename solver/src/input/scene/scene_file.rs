@@ -205,6 +205,13 @@ pub struct WallFile {
     /// Initial velocity of the whole body toward the wall, m/s; > 0.
     #[schemars(with = "f64")]
     pub velocity: Num,
+    /// Hold the impact face (the nodes at y = 0) on the wall for the whole run, free to slide
+    /// (no unit): the boundary `u_y = 0` of DynELA's and Abaqus' Taylor decks, in place of a
+    /// wall the face may leave. Default: false (unilateral).
+    #[serde(default)]
+    #[schemars(with = "Option<bool>")]
+    #[schemars(extend("default" = false))]
+    pub hold_face: Option<Spanned<bool>>,
 }
 
 /// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s

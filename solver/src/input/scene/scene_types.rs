@@ -98,6 +98,8 @@ pub enum Load {
 pub struct Wall {
     /// m/s toward the wall (the body moves along -y)
     pub velocity: f64,
+    /// The impact face's nodes never leave the wall (`load.wall.hold_face`).
+    pub hold_face: bool,
 }
 
 /// The rigid nose in frictionless penalty contact with the plate's top surface (`contact:

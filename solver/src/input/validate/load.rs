@@ -47,9 +47,15 @@ impl Validator<'_> {
                 duration: self.check(&p.duration, "load.pulse.duration", POSITIVE)?,
             }),
             LoadFile::Impactor(i) => self.impactor(&i, plate)?,
-            LoadFile::Wall(w) => Load::Wall(Wall {
-                velocity: self.check(&w.velocity, "load.wall.velocity", POSITIVE)?,
-            }),
+            LoadFile::Wall(w) => {
+                if let Some(hold) = &w.hold_face {
+                    self.read(hold, "load.wall.hold_face");
+                }
+                Load::Wall(Wall {
+                    velocity: self.check(&w.velocity, "load.wall.velocity", POSITIVE)?,
+                    hold_face: w.hold_face.as_ref().is_some_and(|h| h.value),
+                })
+            }
         })
     }
 

@@ -5,7 +5,9 @@
 //! `R_n = m (v_wall - v_free) / h` that makes `v_{n+1/2} = v_wall = -(Y + u_n) / dt`, so it
 //! lands on the wall at `t_{n+1}` (and, once there, stays with zero normal velocity); a node
 //! whose prediction stays above the wall gets no force (unilateral: it leaves). Only `u_y` is
-//! touched (frictionless). Any node may reach the wall.
+//! touched (frictionless). Any node may reach the wall. With `hold_face` the nodes of the impact
+//! face (`Y = 0`) get that force at every step whatever their prediction, so they never leave
+//! (the boundary `u_y = 0` of DynELA's and Abaqus' Taylor decks).
 //!
 //! The wall takes kinetic energy out (a perfectly inelastic impact of each node that lands): its
 //! impulse `h R_n` at step `n` changes the node's velocity from `v_{n-1/2}` to `v_{n+1/2}`, and
@@ -58,6 +60,8 @@ pub struct RigidWall {
     touched: Vec<bool>,
     /// The bottom and top axis nodes (the bar's length on the axis is their distance).
     axis_nodes: [usize; 2],
+    /// Whether the impact face's nodes are held on the wall (never leave it).
+    hold_face: bool,
     /// The bearing force `B_n` of step `n`, whole body, N.
     bearing: f64,
     /// The largest `B_n` so far, N.
@@ -124,7 +128,8 @@ pub struct WallTotals {
 }
 
 impl RigidWall {
-    pub fn new(mesh: &PlateMesh, thickness: f64) -> RigidWall {
+    /// The wall under `mesh` (`thickness` m); `hold_face` keeps the face's nodes on it.
+    pub fn new(mesh: &PlateMesh, thickness: f64, hold_face: bool) -> RigidWall {
         let n = mesh.mesh.n_nodes();
         RigidWall {
             reference: mesh.mesh.coords.clone(),
@@ -138,6 +143,7 @@ impl RigidWall {
             started: false,
             touched: vec![false; n],
             axis_nodes: [mesh.bottom, mesh.top],
+            hold_face,
             bearing: 0.0,
             max_bearing: 0.0,
             max_foot: 0.0,
@@ -183,7 +189,7 @@ impl RigidWall {
             }
             let height = y0 + u[dof];
             let v_free = v[dof] - h * f_int[dof] * inverse_mass[dof];
-            if height + dt * v_free < 0.0 {
+            if height + dt * v_free < 0.0 || (self.hold_face && y0 == 0.0) {
                 let v_wall = -height / dt;
                 self.force[node] = mass[node] * (v_wall - v_free) / h;
                 total += self.force[node];
@@ -273,7 +279,7 @@ mod tests {
             hourglass: 0.05,
             distortion: 0.0,
         };
-        RigidWall::new(&PlateMesh::new(&plate, &settings), 1.0)
+        RigidWall::new(&PlateMesh::new(&plate, &settings), 1.0, false)
     }
 
     /// Free masses (no internal force) at `V` onto the wall, `steps` steps of `dt`; returns the
@@ -340,5 +346,27 @@ mod tests {
             .map(|d| if d % 2 == 1 { 1.0 } else { 0.0 })
             .collect();
         assert_eq!(w.solve((0.1, 0.1), (&u, &v, &f), &mass, &inverse_mass), 0.0);
+    }
+
+    #[test]
+    fn a_held_face_is_pulled_back_and_only_the_face() {
+        // The same upward motion with hold_face: the face's nodes (Y = 0) are held (the wall
+        // pulls each back by m v / h), the rows above still leave freely.
+        let mut w = wall();
+        w.hold_face = true;
+        let n = w.reference.len();
+        let (mass, inverse_mass) = (vec![1.0; n], vec![1.0; 2 * n]);
+        let (u, mut f) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+        let v: Vec<f64> = (0..2 * n)
+            .map(|d| if d % 2 == 1 { 1.0 } else { 0.0 })
+            .collect();
+        let face = w.reference.iter().filter(|r| r[1] == 0.0).count();
+        let total = w.solve((0.1, 0.1), (&u, &v, &f), &mass, &inverse_mass);
+        assert_eq!(total, -(face as f64) * 1.0 / 0.1 * w.s);
+        w.subtract_from(&mut f);
+        for (node, r) in w.reference.iter().enumerate() {
+            let held = if r[1] == 0.0 { 1.0 / 0.1 } else { 0.0 };
+            assert_eq!(f[2 * node + 1], held, "node {node}");
+        }
     }
 }
