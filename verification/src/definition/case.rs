@@ -87,6 +87,10 @@ pub enum RefKind {
     /// Published results of other codes for a benchmark of the field (the band they span).
     #[serde(rename = "other codes")]
     OtherCodes,
+    /// A measurement of a physical test (validation, ASME V&V 20): the check carries its
+    /// `validation` budget and passes when `|E| <= k u_val`.
+    #[serde(rename = "experiment")]
+    Experiment,
 }
 
 impl RefKind {
@@ -100,6 +104,7 @@ impl RefKind {
             RefKind::Regression => "regression",
             RefKind::Acceptance => "acceptance",
             RefKind::OtherCodes => "other codes",
+            RefKind::Experiment => "experiment",
         }
     }
 }
@@ -254,6 +259,10 @@ pub struct CheckFile {
     /// exits non-zero), but `cargo test` accepts it; it fails the test when it starts passing.
     #[serde(default)]
     pub known_failure: Option<String>,
+    /// A comparison with a measurement (reference kind `experiment`): its V&V 20 budget in place
+    /// of a tolerance (`crate::definition::validation`).
+    #[serde(default)]
+    pub validation: Option<Spanned<crate::definition::validation::ValidationFile>>,
 }
 
 /// How the computed value must relate to the reference.

@@ -11,6 +11,7 @@ use crate::definition::case::{
     SeriesSpec,
 };
 use crate::definition::run_data::JobResult;
+use crate::definition::validation::{ValidationFile, ValidationRow};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Status {
@@ -66,6 +67,13 @@ pub struct CheckResult {
     /// Why it failed or was skipped (empty for OK).
     pub message: String,
     pub known_failure: Option<String>,
+    /// The V&V 20 budget of a check against a measurement (reference kind `experiment`).
+    #[serde(
+        default,
+        rename = "vv20_budget",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub validation: Option<ValidationRow>,
 }
 
 /// What a check can read: the results of its case's jobs and where reference files live.
@@ -125,6 +133,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         reference_source: reference.source.clone().unwrap_or_default(),
         message: String::new(),
         known_failure: check.known_failure.clone(),
+        validation: None,
     };
     if let Some(skip) = &check.skip {
         if skip.value.is_skip() {
@@ -177,6 +186,19 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         }
     };
     result.reference = Some(r);
+    if let Some(v) = &check.validation {
+        return validated(result, &v.value, (computed, r), measure, ctx);
+    }
+    judged(result, &tol, (computed, r), check.compare)
+}
+
+/// The verdict of `computed` against reference `r` within tolerance `tol`, by `compare`.
+fn judged(
+    mut result: CheckResult,
+    tol: &crate::definition::case::ToleranceFile,
+    (computed, r): (f64, f64),
+    compare: Compare,
+) -> CheckResult {
     let floor = tol.floor.unwrap_or(0.0);
     let allowance = tol
         .absolute
@@ -194,7 +216,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     }
     let zero = computed.abs() < floor && r.abs() < floor;
     let pass = zero
-        || match check.compare {
+        || match compare {
             Compare::Within => diff.abs() <= allowance,
             Compare::AtMost => diff <= allowance,
             Compare::AtLeast => -diff <= allowance,
@@ -202,7 +224,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     if pass {
         result.status = Status::Ok;
     } else {
-        result.message = match check.compare {
+        result.message = match compare {
             Compare::Within => format!(
                 "|computed - reference| = {:.3e} exceeds {:.3e}",
                 diff.abs(),
@@ -212,6 +234,55 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
             Compare::AtLeast => format!("computed is below reference - {allowance:.3e}"),
         };
     }
+    result
+}
+
+/// The verdict of a comparison with a measurement: `|S - D| <= k u_val` with the budget of
+/// [`ValidationRow`], whose parts come from the same measure on the case's other scenes.
+fn validated(
+    mut result: CheckResult,
+    spec: &ValidationFile,
+    (simulation, measurement): (f64, f64),
+    measure: &MeasureFile,
+    ctx: &Context,
+) -> CheckResult {
+    let on = |scene: &str| {
+        let mut m = measure.clone();
+        m.scene = Some(scene.to_string());
+        measure_value(&m, ctx, None).map_err(|e| format!("scene {scene}: {e}"))
+    };
+    let parts = on(&spec.numerical.scene).and_then(|coarse| {
+        let inputs = spec
+            .input
+            .iter()
+            .map(|(name, d)| Ok((name.clone(), on(&d.scene)?)))
+            .collect::<Result<Vec<_>, String>>()?;
+        ValidationRow::new(spec, (simulation, measurement), coarse, inputs)
+    });
+    let row = match parts {
+        Ok(row) => row,
+        Err(e) => {
+            result.message = format!("validation budget: {e}");
+            return result;
+        }
+    };
+    result.error_kind = ErrorKind::Absolute;
+    result.error = Some(row.comparison_error);
+    result.tolerance = format!("k u_val = {:.3e}", row.k * row.u_val);
+    result.tolerance_reason = format!(
+        "V&V 20: u_val = {:.3e} (u_num {:.3e}, u_input {:.3e}, u_D {:.3e}), k = {}",
+        row.u_val, row.u_num, row.u_input, row.u_d, row.k
+    );
+    if row.covered() {
+        result.status = Status::Ok;
+    } else {
+        result.message = format!(
+            "|E| = {:.3e} exceeds k u_val = {:.3e}: a model error the uncertainties do not cover",
+            row.comparison_error.abs(),
+            row.k * row.u_val
+        );
+    }
+    result.validation = Some(row);
     result
 }
 

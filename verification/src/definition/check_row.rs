@@ -95,6 +95,7 @@ mod tests {
             reference_source: "s".into(),
             message: String::new(),
             known_failure: known.then(|| "why".to_string()),
+            validation: None,
         }
     }
 

@@ -1,7 +1,8 @@
 //! `impact lint`: the rules every case must follow before its results mean anything.
 //!
 //! - every check has a reference with a kind and a one-line source, and a tolerance with a
-//!   reason (or is a pending reference, which runs as a SKIP);
+//!   reason (or is a pending reference, which runs as a SKIP), or, against a measurement
+//!   (kind `experiment`), a `validation` budget whose scenes exist and whose parts say why;
 //! - requirement ids are unique across cases, case ids are unique, check ids are unique
 //!   within a case, and every requirement is a "shall" sentence;
 //! - a skip (case or check) and a known failure carry a reason;
@@ -14,8 +15,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::definition::case::{Case, Loc, MeasureFile};
+use crate::definition::case::{Case, Compare, Loc, MeasureFile, RefKind};
 use crate::definition::repo::Repo;
+use crate::definition::validation::ValidationFile;
 
 #[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Finding {
@@ -264,15 +266,87 @@ fn lint_check(
         ),
         Some(r) => lint_reference(repo, case, &k.id, r, scenes, out),
     }
-    match &k.tolerance {
-        None => out.push(Finding {
+    match (&k.tolerance, &k.validation) {
+        (None, None) => out.push(Finding {
             loc,
             message: format!(
                 "check {}: no tolerance (relative and/or absolute, with a reason)",
                 k.id
             ),
         }),
-        Some(t) => lint_tolerance(case, &k.id, t, out),
+        (Some(t), None) => lint_tolerance(case, &k.id, t, out),
+        (Some(t), Some(_)) => out.push(Finding {
+            loc: case.loc(t),
+            message: format!(
+                "check {}: a check with `validation` takes no tolerance (its bound is k u_val)",
+                k.id
+            ),
+        }),
+        (None, Some(v)) => lint_validation(case, k, v, scenes, out),
+    }
+    let experiment = k.reference.as_ref().and_then(|r| r.value.kind) == Some(RefKind::Experiment);
+    if experiment && k.validation.is_none() {
+        out.push(Finding {
+            loc: case.loc(c),
+            message: format!(
+                "check {}: a reference of kind experiment needs `validation` (u_D, u_num, u_input)",
+                k.id
+            ),
+        });
+    }
+}
+
+/// A comparison with a measurement: the kind `experiment`, `compare: within`, a measure on a
+/// scene, every scene of its budget in the case and every part with a reason.
+fn lint_validation(
+    case: &Case,
+    k: &crate::definition::case::CheckFile,
+    v: &serde_saphyr::Spanned<ValidationFile>,
+    scenes: &BTreeSet<String>,
+    out: &mut Vec<Finding>,
+) {
+    let loc = case.loc(v);
+    let mut push = |message: String| {
+        out.push(Finding {
+            loc: loc.clone(),
+            message: format!("check {}: validation: {message}", k.id),
+        })
+    };
+    if k.reference.as_ref().and_then(|r| r.value.kind) != Some(RefKind::Experiment) {
+        push("needs a reference of kind experiment".into());
+    }
+    if k.compare != Compare::Within {
+        push("compares within k u_val: no compare".into());
+    }
+    if k.measure.value.scene.is_none() {
+        push("the measure must name its scene (the budget measures the same on others)".into());
+    }
+    let spec = &v.value;
+    let e = &spec.experiment;
+    let forms = [e.relative, e.absolute];
+    if forms.iter().flatten().count() != 1
+        || forms
+            .iter()
+            .flatten()
+            .any(|x| !(*x >= 0.0 && x.is_finite()))
+    {
+        push("experiment: exactly one of relative, absolute, finite and >= 0".into());
+    }
+    if spec.k.is_some_and(|k| !(k > 0.0 && k.is_finite())) {
+        push("k must be finite and > 0".into());
+    }
+    let parts = std::iter::once(("numerical", &spec.numerical))
+        .chain(spec.input.iter().map(|(n, d)| (n.as_str(), d)));
+    for (name, d) in parts {
+        if !scenes.contains(&d.scene) {
+            push(format!("{name}: no scene {:?} in this case", d.scene));
+        }
+        if d.reason.trim().is_empty() {
+            push(format!("{name}: needs a reason"));
+        }
+    }
+    if e.reason.trim().is_empty() {
+        push("experiment: needs a reason".into());
     }
 }
 
@@ -295,7 +369,7 @@ fn lint_reference(
         })
     };
     if rv.kind.is_none() {
-        push("the reference has no kind (analytical | independent code | paper | invariant | regression | acceptance)".into());
+        push("the reference has no kind (analytical | independent code | paper | calibration | invariant | regression | acceptance | other codes | experiment)".into());
     }
     if rv.source.as_deref().is_none_or(|s| s.trim().is_empty()) {
         push("the reference has no source line".into());

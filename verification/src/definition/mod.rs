@@ -2,7 +2,7 @@
 //! series, checks) and the lint that every case must pass, the broken cases that fail them,
 //! the repository they live in; how a check is evaluated on the data a run gives back and
 //! what its result means (the verdict, the row every table shows), with the GCI rule of the
-//! convergence checks.
+//! convergence checks, and the validation budget of the checks against measurements.
 
 pub mod broken;
 pub mod case;
@@ -13,4 +13,5 @@ pub mod history_csv;
 pub mod lint;
 pub mod repo;
 pub mod run_data;
+pub mod validation;
 pub mod verdict;

@@ -158,6 +158,7 @@ pub fn write_report_with(
         .find(|d| d.is_dir());
     let ctx = serde_json::json!({
         "evidence": evidence,
+        "experiments": crate::report::validation_section::context(&results, out),
         "codes": crate::report::codes_section::context(&results, from, &repo.root, out),
         "uq": crate::report::uq_section::context(uq_dir.as_deref(), out),
         "changes": crate::report::changes_section::context(from, out),

@@ -155,6 +155,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         reference_source: "impact lint".into(),
         message: message.clone(),
         known_failure: None,
+        validation: None,
     };
     let (id, title, requirement_id, requirement, category, heavy) = match &b.parsed {
         Some(c) => (

@@ -1,5 +1,5 @@
 //! Discriminating power (issue 10, section 1): every evidence check of a case (reference kind
-//! paper, calibration, invariant, acceptance or other codes) re-evaluated on the results of trivial or
+//! paper, calibration, invariant, acceptance, other codes or experiment) re-evaluated on the results of trivial or
 //! wrong models declared in the case's `wrong_models`: a rigid wall (closed form), another
 //! scene read in place of one (the elastic plate in the elasto-plastic row), or the case's
 //! scenes re-run with overrides (the plate with E x 0.5 and x 2). A check that a trivial
@@ -16,13 +16,14 @@ use crate::definition::run_data::{JobResult, RunData};
 
 /// The reference kinds whose checks the table covers (analytical: the physics bounds of
 /// issue 27, e.g. the rigid-plastic band, whose wrong models must fail).
-pub const KINDS: [RefKind; 6] = [
+pub const KINDS: [RefKind; 7] = [
     RefKind::Analytical,
     RefKind::Paper,
     RefKind::Calibration,
     RefKind::Invariant,
     RefKind::Acceptance,
     RefKind::OtherCodes,
+    RefKind::Experiment,
 ];
 
 /// One wrong model's value for one check.
@@ -195,8 +196,14 @@ pub fn rows(case: &Case, checks: &[&CheckFile], ctx: &Context) -> Vec<Row> {
                     root: ctx.root,
                     default_scene: ctx.default_scene,
                 };
-                let r = check::evaluate(k, &c);
+                let mut r = check::evaluate(k, &c);
                 let finite = r.computed.filter(|v| v.is_finite());
+                // Against a measurement the wrong model meets our budget (k u_val of the right
+                // model): its own would measure its coarse and input scenes against ours.
+                if let (Some(row), Some(v)) = (&base.validation, finite) {
+                    let covered = (v - row.measurement).abs() <= row.k * row.u_val;
+                    r.status = if covered { Status::Ok } else { Status::Fail };
+                }
                 let verdict = match (r.status, finite) {
                     // the model does not change what this check reads (e.g. the elastic
                     // plate in the elasto-plastic row, for an elastic-row check)

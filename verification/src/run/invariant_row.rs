@@ -32,5 +32,6 @@ pub fn row(
             format!("|{computed:e} - {reference:e}| > {tol:.1e}")
         },
         known_failure: None,
+        validation: None,
     }
 }

@@ -1,0 +1,260 @@
+//! The report's validation section (issue 40, section 4): every check against a measurement
+//! (reference kind `experiment`) with its V&V 20 row (`crate::definition::validation`), the
+//! area metric per case and quantity, and a plain statement of what the model predicts within
+//! its uncertainty and what it misses, with the reasons the cases give.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde_json::Value;
+
+/// One comparison, read back from results.json.
+struct Comparison {
+    check: String,
+    quantity: String,
+    v: Value,
+    known: Option<String>,
+}
+
+fn f(v: &Value, key: &str) -> f64 {
+    v[key].as_f64().unwrap_or(f64::NAN)
+}
+
+/// Whether the comparison ran and `|E| <= k u_val`.
+fn covered(r: &Comparison) -> bool {
+    !r.v.is_null() && f(&r.v, "comparison_error").abs() <= f(&r.v, "k") * f(&r.v, "u_val")
+}
+
+/// The quantity a check compares: its id without the shot (`final-length-wg73-cu-6` ->
+/// `final-length`), so that rows group by what was measured.
+fn quantity(check: &str, shot_free: &[&str]) -> String {
+    shot_free
+        .iter()
+        .find(|q| check.starts_with(*q))
+        .map_or_else(|| check.to_string(), |q| q.to_string())
+}
+
+fn comparisons(case: &Value) -> Vec<Comparison> {
+    const QUANTITIES: [&str; 3] = ["final-length", "foot-radius", "undeformed-length"];
+    case["checks"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter(|k| k["reference_kind"] == "experiment")
+        .map(|k| Comparison {
+            check: k["id"].as_str().unwrap_or("").to_string(),
+            quantity: quantity(k["id"].as_str().unwrap_or(""), &QUANTITIES),
+            v: k["vv20_budget"].clone(),
+            known: k["known_failure"].as_str().map(str::to_string),
+        })
+        .collect()
+}
+
+/// The rows of one case: D, S, E (also over D), the three uncertainties, u_val, |E| / u_val,
+/// whether 2 u_val covers E, the area metric.
+fn table(rows: &[Comparison]) -> String {
+    let mut s = String::from(
+        "| comparison | measured D | predicted S | E = S - D | E / D | u_num | u_input | u_D | u_val | \\|E\\| / u_val | within k u_val | area metric |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        let v = &r.v;
+        if v.is_null() {
+            let _ = writeln!(
+                s,
+                "| {} | - | - | - | - | - | - | - | - | - | the run failed | - |",
+                r.check
+            );
+            continue;
+        }
+        let (e, d, u) = (f(v, "comparison_error"), f(v, "measurement"), f(v, "u_val"));
+        let _ = writeln!(
+            s,
+            "| {} | {:.4e} | {:.4e} | {:+.3e} | {:+.2} % | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.2} | {} | {:.2e} |",
+            r.check,
+            d,
+            f(v, "simulation"),
+            e,
+            100.0 * e / d,
+            f(v, "u_num"),
+            f(v, "u_input"),
+            f(v, "u_d"),
+            u,
+            e.abs() / u,
+            if covered(r) { "yes" } else { "**no**" },
+            f(v, "area"),
+        );
+    }
+    s
+}
+
+/// Per quantity: the comparisons covered, the mean |E| / D and the mean area metric over D
+/// (the area metric pooled over the shots, each relative to its measurement).
+fn summary(rows: &[Comparison]) -> String {
+    let mut per: BTreeMap<&str, Vec<&Comparison>> = BTreeMap::new();
+    for r in rows.iter().filter(|r| !r.v.is_null()) {
+        per.entry(r.quantity.as_str()).or_default().push(r);
+    }
+    let mut s = String::from(
+        "\n| quantity | comparisons | within 2 u_val | mean \\|E\\| / D | mean area metric / D |\n|---|---|---|---|---|\n",
+    );
+    for (q, rs) in &per {
+        let n = rs.len() as f64;
+        let covered = rs.iter().filter(|r| covered(r)).count();
+        let rel = |key: &str| {
+            rs.iter()
+                .map(|r| (f(&r.v, key) / f(&r.v, "measurement")).abs())
+                .sum::<f64>()
+                / n
+        };
+        let _ = writeln!(
+            s,
+            "| {q} | {} | {covered} | {:.2} % | {:.2} % |",
+            rs.len(),
+            100.0 * rel("comparison_error"),
+            100.0 * rel("area"),
+        );
+    }
+    s
+}
+
+/// What the model predicts within its uncertainty and what it misses, with the cases' reasons.
+fn statement(rows: &[Comparison]) -> String {
+    let within: Vec<&str> = rows
+        .iter()
+        .filter(|r| covered(r))
+        .map(|r| r.check.as_str())
+        .collect();
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\n**Within the validation uncertainty** ({} of {}): {}.",
+        within.len(),
+        rows.len(),
+        if within.is_empty() {
+            "none".to_string()
+        } else {
+            within.join(", ")
+        }
+    );
+    let missed: Vec<&Comparison> = rows.iter().filter(|r| !covered(r)).collect();
+    if missed.is_empty() {
+        s.push_str("\n**Missed:** none.\n");
+    } else {
+        s.push_str("\n**Missed** (a model error the uncertainties do not cover):\n\n");
+        for r in missed {
+            let why = r
+                .known
+                .as_deref()
+                .unwrap_or("no reason declared: an unexpected failure");
+            let _ = writeln!(s, "- `{}`: {why}", r.check);
+        }
+    }
+    s
+}
+
+/// The section as Markdown (headings from level 3); `None` when no check is against a
+/// measurement.
+pub fn markdown(results: &Value) -> Option<String> {
+    let mut s = String::new();
+    for c in results["cases"].as_array().into_iter().flatten() {
+        let rows = comparisons(c);
+        if rows.is_empty() {
+            continue;
+        }
+        let _ = writeln!(
+            s,
+            "## {}/{}\n\n{}\n\n{}\n",
+            c["suite"].as_str().unwrap_or(""),
+            c["case"].as_str().unwrap_or(""),
+            c["title"].as_str().unwrap_or(""),
+            c["problem"].as_str().unwrap_or("").trim()
+        );
+        s.push_str(&table(&rows));
+        s.push_str(&summary(&rows));
+        s.push_str(&statement(&rows));
+    }
+    (!s.is_empty()).then(|| {
+        format!(
+            "Comparisons with **measurements** of physical tests (reference kind `experiment`), by \
+             ASME V&V 20-2009: the comparison error `E = S - D`, the validation uncertainty \
+             `u_val = sqrt(u_num^2 + u_input^2 + u_D^2)` (standard uncertainties: `u_num` by \
+             Richardson at first order from a mesh 2x coarser, `u_input` by the \
+             sensitivity-coefficient method with each input moved by its standard uncertainty, \
+             `u_D` the measurement's), and the verdict `|E| <= 2 u_val`. The area metric \
+             (Ferson, Oberkampf and Ginzburg 2008) is the area between the cumulative \
+             distributions of the prediction `N(S, u_num^2 + u_input^2)` and the measurement \
+             `N(D, u_D^2)`, in the quantity's unit. The models' constants were fitted to other \
+             tests, never to these: this is validation, not calibration.\n\n{s}"
+        )
+    })
+}
+
+/// The section for the report templates: `{present, html, md}`.
+pub fn context(results: &Value, out: &Path) -> Value {
+    let Some(text) = markdown(results) else {
+        return serde_json::json!({"present": false, "md": "", "html": "", "count": 0, "covered": 0});
+    };
+    let all: Vec<Comparison> = results["cases"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .flat_map(comparisons)
+        .collect();
+    let covered = all.iter().filter(|r| covered(r)).count();
+    let e = crate::report::markdown::embed(
+        &text,
+        &crate::report::markdown::Embed {
+            base: out,
+            top_level: 3,
+            anchor_prefix: "validation-",
+            out,
+            copy_to: "",
+            section_title: None,
+        },
+    );
+    serde_json::json!({"present": true, "md": e.md, "html": e.html, "count": all.len(), "covered": covered})
+}
+
+#[cfg(test)]
+mod tests {
+    //! The validation section recomputes its verdicts and summaries from the rows it is given.
+    use super::*;
+
+    fn case(rows: &[(&str, f64, f64, f64, Option<&str>)]) -> Value {
+        let checks: Vec<Value> = rows
+            .iter()
+            .map(|(id, s, d, u, known)| {
+                serde_json::json!({"id": id, "reference_kind": "experiment", "known_failure": known,
+                    "vv20_budget": {"simulation": s, "measurement": d, "comparison_error": s - d,
+                        "u_num": 0.0, "u_input": 0.0, "u_d": u, "u_val": u, "k": 2.0,
+                        "area": (s - d).abs()}})
+            })
+            .collect();
+        serde_json::json!({"cases": [{"suite": "s", "case": "c", "title": "t",
+            "problem": "p", "checks": checks}]})
+    }
+
+    #[test]
+    fn rows_within_two_u_val_are_covered_and_the_others_missed_with_their_reason() {
+        let r = case(&[
+            ("final-length-a", 10.1, 10.0, 0.1, None),
+            ("final-length-b", 10.5, 10.0, 0.1, Some("too long")),
+        ]);
+        let md = markdown(&r).unwrap();
+        assert!(
+            md.contains("**Within the validation uncertainty** (1 of 2): final-length-a."),
+            "{md}"
+        );
+        assert!(md.contains("- `final-length-b`: too long"), "{md}");
+        // mean |E| / D over the two shots: (1 % + 5 %) / 2
+        assert!(md.contains("| final-length | 2 | 1 | 3.00 % |"), "{md}");
+    }
+
+    #[test]
+    fn no_comparison_with_a_measurement_gives_no_section() {
+        let r =
+            serde_json::json!({"cases": [{"checks": [{"id": "x", "reference_kind": "paper"}]}]});
+        assert!(markdown(&r).is_none());
+    }
+}
