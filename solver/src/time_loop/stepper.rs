@@ -143,7 +143,7 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
         let ndof = model.inverse_mass.len();
         let mut v = vec![0.0; ndof];
         let wall = scene.wall().map(|spec| {
-            let wall = RigidWall::new(mesh, scene.plate.thickness, spec.hold_face);
+            let wall = RigidWall::new(mesh, scene.plate.thickness, (spec.hold_face, spec.friction));
             wall.launch(spec.velocity, &model.inverse_mass, &mut v);
             (wall, WallReading::default())
         });

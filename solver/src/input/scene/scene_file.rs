@@ -212,6 +212,13 @@ pub struct WallFile {
     #[schemars(with = "Option<bool>")]
     #[schemars(extend("default" = false))]
     pub hold_face: Option<Spanned<bool>>,
+    /// Coulomb's friction coefficient between the wall and the body (no unit; >= 0): a held
+    /// node's tangential force at most `friction` times its normal force. Default: 0
+    /// (frictionless).
+    #[serde(default)]
+    #[schemars(with = "Option<f64>")]
+    #[schemars(extend("default" = 0.0))]
+    pub friction: Option<Num>,
 }
 
 /// `impactor`: rigid line-nose body. `mass` kg (whole impactor, whole width), `velocity` m/s

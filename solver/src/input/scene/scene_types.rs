@@ -100,6 +100,8 @@ pub struct Wall {
     pub velocity: f64,
     /// The impact face's nodes never leave the wall (`load.wall.hold_face`).
     pub hold_face: bool,
+    /// Coulomb's coefficient between the wall and the body (-), 0 frictionless.
+    pub friction: f64,
 }
 
 /// The rigid nose in frictionless penalty contact with the plate's top surface (`contact:

@@ -54,6 +54,10 @@ impl Validator<'_> {
                 Load::Wall(Wall {
                     velocity: self.check(&w.velocity, "load.wall.velocity", POSITIVE)?,
                     hold_face: w.hold_face.as_ref().is_some_and(|h| h.value),
+                    friction: match &w.friction {
+                        Some(mu) => self.check(mu, "load.wall.friction", NON_NEGATIVE)?,
+                        None => 0.0,
+                    },
                 })
             }
         })

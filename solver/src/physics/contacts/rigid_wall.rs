@@ -9,6 +9,13 @@
 //! face (`Y = 0`) get that force at every step whatever their prediction, so they never leave
 //! (the boundary `u_y = 0` of DynELA's and Abaqus' Taylor decks).
 //!
+//! Coulomb friction (`friction` = mu > 0; 0, the default, touches nothing): a held node's
+//! tangential force is the one that stops its tangential motion in this step,
+//! `T_stick = -m v_x,free / h`, limited to `mu max(R_i, 0)` in size (stick below the limit, slip
+//! at it). Impulses, not rates: a landing node's tangential impulse is at most mu times the
+//! normal impulse that stops it. Its work joins `W_n` (the friction's dissipation is in the
+//! wall's).
+//!
 //! The wall takes kinetic energy out (a perfectly inelastic impact of each node that lands): its
 //! impulse `h R_n` at step `n` changes the node's velocity from `v_{n-1/2}` to `v_{n+1/2}`, and
 //! so its kinetic energy by `W_n = h R_n (v_{n-1/2} + v_{n+1/2}) / 2` (exactly: the half-step
@@ -62,6 +69,10 @@ pub struct RigidWall {
     axis_nodes: [usize; 2],
     /// Whether the impact face's nodes are held on the wall (never leave it).
     hold_face: bool,
+    /// Coulomb's coefficient `mu` (-), 0 without friction.
+    friction: f64,
+    /// The tangential force on each node's `u_x`, N (modelled part); 0 without friction.
+    tangential: Vec<f64>,
     /// The bearing force `B_n` of step `n`, whole body, N.
     bearing: f64,
     /// The largest `B_n` so far, N.
@@ -128,8 +139,9 @@ pub struct WallTotals {
 }
 
 impl RigidWall {
-    /// The wall under `mesh` (`thickness` m); `hold_face` keeps the face's nodes on it.
-    pub fn new(mesh: &PlateMesh, thickness: f64, hold_face: bool) -> RigidWall {
+    /// The wall under `mesh` (`thickness` m); `hold_face` keeps the face's nodes on it;
+    /// `friction` is Coulomb's `mu` (-).
+    pub fn new(mesh: &PlateMesh, thickness: f64, (hold_face, friction): (bool, f64)) -> RigidWall {
         let n = mesh.mesh.n_nodes();
         RigidWall {
             reference: mesh.mesh.coords.clone(),
@@ -144,6 +156,8 @@ impl RigidWall {
             touched: vec![false; n],
             axis_nodes: [mesh.bottom, mesh.top],
             hold_face,
+            friction,
+            tangential: vec![0.0; n],
             bearing: 0.0,
             max_bearing: 0.0,
             max_foot: 0.0,
@@ -184,6 +198,7 @@ impl RigidWall {
         for (node, &[_, y0]) in self.reference.iter().enumerate() {
             let dof = 2 * node + 1;
             self.force[node] = 0.0;
+            self.tangential[node] = 0.0;
             if inverse_mass[dof] == 0.0 {
                 continue;
             }
@@ -195,6 +210,12 @@ impl RigidWall {
                 total += self.force[node];
                 work += h * self.force[node] * 0.5 * (v[dof] + v_wall);
                 bearing += f_int[dof];
+                if self.friction > 0.0 && inverse_mass[dof - 1] != 0.0 {
+                    let limit = self.friction * self.force[node].max(0.0);
+                    let (t, w) = coulomb(limit, h, (v[dof - 1], f_int[dof - 1]), mass[node]);
+                    self.tangential[node] = t;
+                    work += w;
+                }
             }
         }
         self.work_now = self.s * work;
@@ -207,6 +228,11 @@ impl RigidWall {
     pub fn subtract_from(&self, f_int: &mut [f64]) {
         for (node, &r) in self.force.iter().enumerate() {
             f_int[2 * node + 1] -= r;
+        }
+        if self.friction > 0.0 {
+            for (node, &t) in self.tangential.iter().enumerate() {
+                f_int[2 * node] -= t;
+            }
         }
     }
 
@@ -256,6 +282,18 @@ impl RigidWall {
     }
 }
 
+/// Coulomb friction on a held node with normal force limit `limit = mu max(R_i, 0)` (N): the
+/// tangential force `T = clamp(-m v_free / h, -limit, limit)` (N) that stops the node's
+/// tangential motion in the step or slips at the limit (`v`, `f` its `v_x,n-1/2` m/s and
+/// `f_int - f_ext` on `u_x` N, `m` kg, `h` s), and its work `h T (v_x,n-1/2 + v_x,n+1/2) / 2`
+/// (J, modelled part).
+fn coulomb(limit: f64, h: f64, (v, f): (f64, f64), m: f64) -> (f64, f64) {
+    let v_free = v - h * f / m;
+    let t = (-m * v_free / h).clamp(-limit, limit);
+    let v_after = v_free + h * t / m;
+    (t, h * t * 0.5 * (v + v_after))
+}
+
 #[cfg(test)]
 mod tests {
     //! The wall on a column of masses: one node stopped, one landing mid-step; the dissipation
@@ -279,7 +317,7 @@ mod tests {
             hourglass: 0.05,
             distortion: 0.0,
         };
-        RigidWall::new(&PlateMesh::new(&plate, &settings), 1.0, false)
+        RigidWall::new(&PlateMesh::new(&plate, &settings), 1.0, (false, 0.0))
     }
 
     /// Free masses (no internal force) at `V` onto the wall, `steps` steps of `dt`; returns the
@@ -368,5 +406,62 @@ mod tests {
             let held = if r[1] == 0.0 { 1.0 / 0.1 } else { 0.0 };
             assert_eq!(f[2 * node + 1], held, "node {node}");
         }
+    }
+
+    #[test]
+    fn a_pressed_block_slides_to_rest_at_coulomb_s_deceleration() {
+        // Closed form: a mass m pressed on the wall by F with tangential speed v0 decelerates
+        // at mu F / m and stops at t_s = m v0 / (mu F), having lost its kinetic energy m v0^2 / 2
+        // to the wall. Masses 2 kg, F = 4 N, mu = 0.25: 0.5 m/s^2, v0 = 1 m/s stops at t = 2 s
+        // (20 steps of 0.1 s); the rows above the wall are lifted out of reach.
+        let mut w = wall();
+        w.friction = 0.25;
+        let n = w.reference.len();
+        for r in w.reference.iter_mut().filter(|r| r[1] > 0.0) {
+            r[1] = 1.0e3;
+        }
+        let (m, push, v0, h) = (2.0, 4.0, 1.0, 0.1);
+        let face: Vec<usize> = (0..n).filter(|&k| w.reference[k][1] == 0.0).collect();
+        let (mass, inverse_mass) = (vec![m; n], vec![1.0 / m; 2 * n]);
+        let (u, mut v) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+        for &k in &face {
+            v[2 * k] = v0;
+        }
+        let mut speeds = Vec::new();
+        for _ in 0..30 {
+            let mut f = vec![0.0; 2 * n];
+            for &k in &face {
+                f[2 * k + 1] = push;
+            }
+            w.solve((h, h), (&u, &v, &f), &mass, &inverse_mass);
+            w.subtract_from(&mut f);
+            for d in 0..2 * n {
+                v[d] -= h * f[d] * inverse_mass[d];
+            }
+            speeds.push(v[2 * face[0]]);
+        }
+        for (step, &s) in speeds.iter().enumerate() {
+            let closed = (v0 - 0.25 * push / m * h * (step + 1) as f64).max(0.0);
+            assert!(
+                (s - closed).abs() < 1e-14,
+                "step {step}: {s} against {closed}"
+            );
+        }
+        // The wall took the tangential kinetic energy, s m v0^2 / 2 per face node (the normal
+        // direction is at rest: no work).
+        let lost = w.s * face.len() as f64 * 0.5 * m * v0 * v0;
+        w.solve((h, h), (&u, &v, &vec![0.0; 2 * n]), &mass, &inverse_mass);
+        assert!(
+            (w.energy() - lost).abs() < 1e-12 * lost,
+            "{} against {lost}",
+            w.energy()
+        );
+        // Frictionless, the same block keeps its speed.
+        let mut frictionless = wall();
+        let f = vec![0.0; 2 * n];
+        let mut v = vec![0.0; 2 * n];
+        v[2 * face[0]] = v0;
+        frictionless.solve((h, h), (&u, &v, &f), &mass, &inverse_mass);
+        assert!(frictionless.tangential.iter().all(|&t| t == 0.0));
     }
 }
