@@ -212,7 +212,7 @@ pub struct WallFile {
     #[schemars(with = "Option<bool>")]
     #[schemars(extend("default" = false))]
     pub hold_face: Option<Spanned<bool>>,
-    /// Coulomb's friction coefficient between the wall and the body (no unit; >= 0): a held
+    /// Coulomb's friction coefficient between the wall and the body (-; >= 0): a held
     /// node's tangential force at most `friction` times its normal force. Default: 0
     /// (frictionless).
     #[serde(default)]

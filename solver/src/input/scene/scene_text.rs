@@ -148,7 +148,8 @@ fn load_value(load: &Load) -> Value {
         Load::Pulse(p) => json!({"pulse": {"force": p.force, "duration": p.duration}}),
         Load::Traction(t) => json!({"traction": {"normal": t.normal, "shear": t.shear,
                                                  "duration": t.duration}}),
-        Load::Wall(w) => json!({"wall": {"velocity": w.velocity}}),
+        Load::Wall(w) => json!({"wall": {"velocity": w.velocity, "hold_face": w.hold_face,
+                                         "friction": w.friction}}),
     }
 }
 
