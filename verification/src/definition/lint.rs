@@ -322,18 +322,8 @@ fn lint_validation(
         push("the measure must name its scene (the budget measures the same on others)".into());
     }
     let spec = &v.value;
-    let e = &spec.experiment;
-    let forms = [e.relative, e.absolute];
-    if forms.iter().flatten().count() != 1
-        || forms
-            .iter()
-            .flatten()
-            .any(|x| !(*x >= 0.0 && x.is_finite()))
-    {
-        push("experiment: exactly one of relative, absolute, finite and >= 0".into());
-    }
-    if spec.k.is_some_and(|k| !(k > 0.0 && k.is_finite())) {
-        push("k must be finite and > 0".into());
+    for problem in spec.declaration_problems() {
+        push(problem.into());
     }
     let parts = std::iter::once(("numerical", &spec.numerical))
         .chain(spec.input.iter().map(|(n, d)| (n.as_str(), d)));
@@ -345,7 +335,7 @@ fn lint_validation(
             push(format!("{name}: needs a reason"));
         }
     }
-    if e.reason.trim().is_empty() {
+    if spec.experiment.reason.trim().is_empty() {
         push("experiment: needs a reason".into());
     }
 }

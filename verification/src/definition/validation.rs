@@ -40,6 +40,28 @@ pub struct ValidationFile {
     pub input: std::collections::BTreeMap<String, SceneDelta>,
 }
 
+impl ValidationFile {
+    /// What makes the declaration unable to give a standard uncertainty and a coverage
+    /// factor (empty when it can): `impact lint` reports each, and a run refuses them.
+    pub fn declaration_problems(&self) -> Vec<&'static str> {
+        let e = &self.experiment;
+        let forms = [e.relative, e.absolute];
+        let mut problems = Vec::new();
+        if forms.iter().flatten().count() != 1
+            || forms
+                .iter()
+                .flatten()
+                .any(|x| !(*x >= 0.0 && x.is_finite()))
+        {
+            problems.push("experiment: exactly one of relative, absolute, finite and >= 0");
+        }
+        if self.k.is_some_and(|k| !(k > 0.0 && k.is_finite())) {
+            problems.push("k must be finite and > 0");
+        }
+        problems
+    }
+}
+
 /// A standard uncertainty of the measured value: relative to it, or absolute (its unit).
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -88,19 +110,15 @@ impl ValidationRow {
         coarse: f64,
         inputs: Vec<(String, f64)>,
     ) -> Result<ValidationRow, String> {
-        let u_d = match (spec.experiment.relative, spec.experiment.absolute) {
-            (Some(r), None) => r * measurement.abs(),
-            (None, Some(a)) => a,
-            _ => {
-                return Err("validation.experiment: give exactly one of relative, absolute".into())
-            }
-        };
-        let k = spec.k.unwrap_or(2.0);
-        if !(u_d >= 0.0 && u_d.is_finite() && k > 0.0 && k.is_finite()) {
-            return Err(format!(
-                "validation: u_D = {u_d:e} and k = {k:e} must be finite, u_D >= 0 and k > 0"
-            ));
+        let problems = spec.declaration_problems();
+        if !problems.is_empty() {
+            return Err(format!("validation: {}", problems.join("; ")));
         }
+        let e = &spec.experiment;
+        let u_d = e
+            .absolute
+            .unwrap_or_else(|| e.relative.unwrap_or(0.0) * measurement.abs());
+        let k = spec.k.unwrap_or(2.0);
         // Richardson at first order from a refinement ratio of 2: |S - S_coarse| / (2 - 1).
         let u_num = (simulation - coarse).abs();
         let input_deltas: Vec<(String, f64)> = inputs
