@@ -1,7 +1,9 @@
 //! The numbers the kernels compute in: `f64` on the scalar reference path and [`simd::Lanes`]
 //! on the batched path, written once over [`real::Real`]; the instruction set chosen at run time
-//! ([`simd`]); and the heap the model's arrays hold ([`heap`]).
+//! ([`simd`]); `ln`, `exp` and `pow` written once for both ([`transcendental`]); and the heap
+//! the model's arrays hold ([`heap`]).
 
 pub mod heap;
 pub mod real;
 pub mod simd;
+pub mod transcendental;
