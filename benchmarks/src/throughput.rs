@@ -10,6 +10,16 @@
 //! 2026-11-26, quick, two helpers compiling: q4-sri 32 ns small, 150 ns finite, whose F-bar
 //! takes a cube root per point lane by lane, against 61 ns for the plane finite kernel then).
 //!
+//! The rate laws (2026-11-29, quick, min of 2 runs interleaved with the previous binary): the
+//! Johnson-Cook kernel with heating 593 -> 268 ns (9.1x the rate-independent 29.6 ns; target
+//! 2x, missed), Cowper-Symonds 127 -> 90 ns (3.0x; target 1.5x, missed), after `ln`, `exp` and
+//! `pow` ran on the lanes (`lanes::transcendental`, in place of libm one lane at a time) and
+//! the Newton residuals were inlined into the vector kernel (a closure had been left out of
+//! line, compiled for SSE2). Here every call reverses the strain, so Newton's start from the
+//! last step's increment does not help as it does in a run (a copper Taylor bar: 3.5 iterations
+//! per batched call against 11.6, the whole run 7.2 -> 2.4 s); what remains is the iterations'
+//! count and each one's `ln`, two `exp` and two divisions per lane.
+//!
 //! The plane finite kernel (2026-11-26, quick, min of 3 runs interleaved with the previous
 //! binary, other builds on the second core): 53.4 ns against 29.7 ns small-strain, 1.80x
 //! (60.2 ns, 2.03x, before each point's F-bar factor was computed one point ahead); elastic
