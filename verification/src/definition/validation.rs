@@ -115,9 +115,15 @@ impl ValidationRow {
             return Err(format!("validation: {}", problems.join("; ")));
         }
         let e = &spec.experiment;
+        // Exactly one of the two is given (declaration_problems).
         let u_d = e
             .absolute
             .unwrap_or_else(|| e.relative.unwrap_or(0.0) * measurement.abs());
+        if !u_d.is_finite() {
+            return Err(format!(
+                "validation: u_D = {u_d:e} from the measurement {measurement:e} is not finite"
+            ));
+        }
         let k = spec.k.unwrap_or(2.0);
         // Richardson at first order from a refinement ratio of 2: |S - S_coarse| / (2 - 1).
         let u_num = (simulation - coarse).abs();
@@ -274,6 +280,9 @@ mod tests {
     #[test]
     fn an_uncertainty_needs_exactly_one_form() {
         assert!(ValidationRow::new(&spec(None, None), (1.0, 1.0), 1.0, vec![]).is_err());
+        // A relative u_D of a measurement that is not a number refuses too.
+        let relative = spec(Some(0.1), None);
+        assert!(ValidationRow::new(&relative, (1.0, f64::INFINITY), 1.0, vec![]).is_err());
         assert!(ValidationRow::new(&spec(Some(0.1), Some(0.1)), (1.0, 1.0), 1.0, vec![]).is_err());
         assert!(ValidationRow::new(&spec(None, Some(-1.0)), (1.0, 1.0), 1.0, vec![]).is_err());
     }
