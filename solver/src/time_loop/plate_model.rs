@@ -36,7 +36,8 @@ pub struct PlateModel<F: Formulation, M: ConstitutiveModel> {
 }
 
 impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
-    pub fn new(formulation: F, material: M, mesh: &PlateMesh, density: f64) -> Self {
+    pub fn new(formulation: F, mut material: M, mesh: &PlateMesh, density: f64) -> Self {
+        material.set_isa(KernelPath::fastest().isa());
         let n = formulation.n_elements();
         let mass = lumped_masses(&formulation, mesh.mesh.n_nodes(), density);
         let inverse_mass = (0..2 * mass.len())
@@ -82,6 +83,7 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
     /// Runs the element kernels on `path` (the scalar reference or a batched instruction set).
     pub fn with_kernel_path(mut self, path: KernelPath) -> Self {
         self.kernel_path = path;
+        self.material.set_isa(path.isa());
         self
     }
 

@@ -6,7 +6,7 @@
 //! Cauchy stress of a converged state.
 
 use crate::lanes::real::Real;
-use crate::lanes::simd::Lanes;
+use crate::lanes::simd::{Isa, Lanes};
 use crate::physics::kinematics::{deformation, det, Memory, Rotation};
 use crate::physics::materials::material::{ConstitutiveModel, Elastic, Response, Strain, Stress};
 
@@ -88,6 +88,10 @@ impl<M: ConstitutiveModel> ConstitutiveModel for Finite<M> {
 
     fn set_time_step(&mut self, dt: f64) {
         self.0.set_time_step(dt);
+    }
+
+    fn set_isa(&mut self, isa: Isa) {
+        self.0.set_isa(isa);
     }
 
     fn plastic_strain_rate(&self, state: &Self::State) -> Option<f64> {

@@ -6,7 +6,7 @@
 
 use crate::input::scene::{Hardening, Material as MaterialSpec};
 use crate::lanes::real::{Real, THIRD};
-use crate::lanes::simd::Lanes;
+use crate::lanes::simd::{Isa, Lanes};
 use crate::physics::kinematics::Memory;
 
 pub type Strain = [f64; 4];
@@ -73,6 +73,9 @@ pub trait ConstitutiveModel: Sync + 'static {
     }
     /// Tells a rate-dependent model the run's time step (s), before the first update.
     fn set_time_step(&mut self, _dt: f64) {}
+    /// Tells the model the instruction set its batched kernels run on (a model that runs
+    /// part of its update out of line compiles that part for it).
+    fn set_isa(&mut self, _isa: Isa) {}
     /// A rate-dependent model's equivalent plastic strain rate over the last step (1/s);
     /// `None` for a rate-independent model.
     fn plastic_strain_rate(&self, _state: &Self::State) -> Option<f64> {

@@ -19,7 +19,7 @@
 use crate::input::scene::{Hardening, Material as MaterialSpec};
 use crate::input::scene::{RateLaw, Thermal};
 use crate::lanes::real::Real;
-use crate::lanes::simd::Lanes;
+use crate::lanes::simd::{dispatch_out_of_line, Isa, Kernel, Lanes};
 use crate::lanes::transcendental::{ln, pow, pow_of_ln};
 use crate::physics::materials::material::{
     radial_return, ConstitutiveModel, Elastic, FlowCurve, FlowLaw, PlasticBatch, PlasticState,
@@ -107,6 +107,8 @@ pub struct ViscoPlastic {
     heating_per_work: f64,
     /// The run's time step, s (set by the time loop before the first update).
     dt: f64,
+    /// The instruction set the Newton solve is compiled for (the batched kernels').
+    isa: Isa,
 }
 
 impl ViscoPlastic {
@@ -137,6 +139,7 @@ impl ViscoPlastic {
                 .map_or(0.0, |t| t.taylor_quinney / (spec.density * t.specific_heat)),
             law,
             dt: f64::NAN,
+            isa: Isa::Baseline,
         })
     }
 
@@ -161,7 +164,8 @@ impl ViscoPlastic {
 
     /// The increment `dk` of the rate-dependent consistency condition (module documentation)
     /// per lane; 0 where the trial stress `q` (Pa) does not exceed `static_flow`, the static
-    /// flow stress at `k` and the point's temperature (Pa).
+    /// flow stress at `k` and the point's temperature (Pa). Out of line, compiled once per
+    /// instruction set ([`dispatch_out_of_line`]).
     #[inline(always)]
     fn increment<R: Real>(
         &self,
@@ -171,7 +175,28 @@ impl ViscoPlastic {
         three_mu: f64,
         flow: &RateFlow<R>,
     ) -> R {
-        let softening = flow.softening;
+        let solve = IncrementSolve {
+            model: self,
+            q,
+            k,
+            static_flow,
+            three_mu,
+            softening: flow.softening,
+            last_increment: flow.last_increment,
+        };
+        dispatch_out_of_line(self.isa, solve)
+    }
+
+    /// [`ViscoPlastic::increment`], inlined.
+    #[inline(always)]
+    fn solve_increment<R: Real>(
+        &self,
+        q: R,
+        k: R,
+        static_flow: R,
+        three_mu: f64,
+        (softening, last_increment): (R, R),
+    ) -> R {
         let running = q.gt(static_flow);
         let zero = R::splat(0.0);
         match self.law {
@@ -222,7 +247,7 @@ impl ViscoPlastic {
                 // that lies inside the bracket: near the root in steady flow.
                 let dk = solve_decreasing(
                     (zero, hi),
-                    flow.last_increment,
+                    last_increment,
                     running,
                     q * RESIDUAL_TOLERANCE,
                     residual,
@@ -230,6 +255,28 @@ impl ViscoPlastic {
                 R::select(running, dk, zero)
             }
         }
+    }
+}
+
+/// The arguments of [`ViscoPlastic::increment`], to run it out of line.
+struct IncrementSolve<'a, R> {
+    model: &'a ViscoPlastic,
+    q: R,
+    k: R,
+    static_flow: R,
+    three_mu: f64,
+    softening: R,
+    last_increment: R,
+}
+
+impl<R: Real> Kernel for IncrementSolve<'_, R> {
+    type Output = R;
+    #[inline(always)]
+    fn run(self) -> R {
+        let s = self;
+        let start = (s.softening, s.last_increment);
+        s.model
+            .solve_increment(s.q, s.k, s.static_flow, s.three_mu, start)
     }
 }
 
@@ -488,6 +535,10 @@ impl ConstitutiveModel for ViscoPlastic {
 
     fn set_time_step(&mut self, dt: f64) {
         self.dt = dt;
+    }
+
+    fn set_isa(&mut self, isa: Isa) {
+        self.isa = isa;
     }
 
     fn plastic_strain_rate(&self, state: &ViscoState) -> Option<f64> {
