@@ -196,7 +196,7 @@ fn throughput(kernels: Option<&Table>, runs: Option<&Table>, python: Option<&Tab
     let mut s = String::from("## Throughput\n\n");
     let parts = [
         (kernels, "Element kernels (internal force + material update) on the 80 x 16 paper mesh, ns per element-step on one thread (best of the timed batches) against the targets, which are per core; the plastic kernels also on two threads, as a run uses them ('elastic' is the path the solver uses, the stiffness matrix for every element, the faster one: compare elastic-stress-path; throughput-kernels.csv):"),
-        (runs, "Whole runs of the Table 1 paper scenes, 80 x 16 q4-sri, 3 ms, best of the runs, `loop_spread` = slowest / fastest loop - 1 (throughput-runs.csv):"),
+        (runs, "Whole runs of the Table 1 paper scenes, 80 x 16 q4-sri, 3 ms (in the main job also the Kamoulakos Taylor bar with its step fixed and re-estimated every step, and `taylor-bar-step-re-estimation`: the difference of their ns per element-step, what re-estimating the step costs), best of the runs, `loop_spread` = slowest / fastest loop - 1 (throughput-runs.csv):"),
         (python, "The same scene in the independent Python FE, side by side (throughput-python.csv; solver wall times, the Python process adds interpreter start-up and imports; the impulses' difference shows both ran the same problem):"),
     ];
     for (t, what) in parts {

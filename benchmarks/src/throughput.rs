@@ -273,7 +273,7 @@ pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {
     ];
     write_csv(&out.join("throughput-runs.csv"), &header, &runs)?;
     println!(
-        "Whole runs (Table 1 paper scenes, 80x16 q4-sri, 3 ms; without --quick also the Taylor bar, 10x36 q4-sri, 80 us, its step fixed at cfl 0.02 and re-estimated every step at cfl 0.8; best of the runs; loop_spread: slowest / fastest loop - 1):\n{}",
+        "Whole runs (Table 1 paper scenes, 80x16 q4-sri, 3 ms; without --quick also the Taylor bar, 10x36 q4-sri, 80 us, its step fixed at cfl 0.02 and re-estimated every step at cfl 0.8, and the re-estimation's own cost per element-step, the difference of the two; best of the runs; loop_spread: slowest / fastest loop - 1):\n{}",
         markdown_table(&header, &runs)
     );
     python_side_by_side(out, quick, &rust_runs)
@@ -316,13 +316,22 @@ fn whole_runs(quick: bool) -> anyhow::Result<WholeRuns> {
     if !quick {
         // What the step re-estimated at every step saves (case taylor-bar/adaptive-step: the
         // same final length within 3e-5); 1-5 s a run, so the main job's only.
+        let mut per_element_step = Vec::new();
         for (every_step, name) in [
             (false, "taylor-bar-fixed-cfl-0.02"),
             (true, "taylor-bar-every-step-cfl-0.8"),
         ] {
             let timing = timed_on(&taylor_bar(every_step), 3, KernelPath::fastest())?;
             runs.push(run_row(name, &timing, None));
+            let s = &timing.outcome.summary;
+            per_element_step.push(timing.time_loop / (s.n_steps as f64 * s.n_elements as f64));
         }
+        // The re-estimation's own cost: the every-step run's time per element-step less the
+        // fixed-step run's (the same bar over the same time, its steps doing the same work).
+        let mut row = vec!["-".to_string(); 9];
+        row[0] = "taylor-bar-step-re-estimation".into();
+        row[4] = format!("{:.1}", 1e9 * (per_element_step[1] - per_element_step[0]));
+        runs.push(row);
     }
     Ok((runs, rust_runs))
 }

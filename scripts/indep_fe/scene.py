@@ -119,7 +119,8 @@ class TimeSpec:
     cfl: float | None = None
     fixed_dt: float | None = None
     allow_unstable_dt: bool = False
-    update: str = "once"                  # time.dt.update: once | every-step (section 6b)
+    update: str | None = None             # time.dt.update: once | every-step (section 6b);
+                                          # None: not given (default_update)
 
 
 DT_UPDATES = ("once", "every-step")
@@ -501,10 +502,19 @@ def parse_scene(data: dict) -> Scene:
         raise SceneError(f"geometry must be plane-strain | axisymmetric, got {geometry!r}")
     if geometry == "axisymmetric":
         _check_axisymmetric(mesh, impactor)
+    if ts.update is None:
+        ts.update = default_update(ts, kinematics, wall)
     if ts.update == "every-step" and (kinematics != "finite" or ts.cfl is None):
         raise SceneError("time.dt.update: every-step needs kinematics: finite and time.dt.cfl "
                          f"(got kinematics {kinematics!r}, time.dt {'cfl' if ts.cfl else 'fixed'})")
     return Scene(plate, material, mesh, impactor, pulse, ts, output, kinematics, geometry, wall)
+
+
+def default_update(ts: TimeSpec, kinematics: str, wall: Wall | None) -> str:
+    """time.dt.update when the scene does not say (section 6b): every-step for a finite body on
+    the rigid wall with the step given as cfl (its elements are crushed), else once."""
+    return "every-step" if (wall is not None and kinematics == "finite"
+                            and ts.cfl is not None) else "once"
 
 
 def _check_axisymmetric(mesh: MeshSpec, impactor: Impactor | None) -> None:

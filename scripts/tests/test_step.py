@@ -3,7 +3,8 @@ every-step`) against identities of central differences with unequal steps: the t
 impulse equals the bar's momentum change over steps of unequal length; with equal steps the path
 is the fixed-step one; the run lands on its end with rows at the first step at or past each
 `k every`; on a crushing Taylor bar the step follows the mesh where a fixed step is refused; the
-1e-3 floor; the scene's refusals. Each check names the wrong model it rejects."""
+default of update (every-step on the wall under finite kinematics); the 1e-3 floor; the scene's
+refusals. Each check names the wrong model it rejects."""
 import math
 
 import numpy as np
@@ -65,7 +66,7 @@ def test_equal_steps_reproduce_the_fixed_step_path(monkeypatch):
     6.04e-5 s) where every-step cuts its last step onto it. A velocity step of dt_{1/2} (not
     dt_{1/2} / 2) at n = 0 would change every column."""
     assert all(velocity_step(d, d) == d for d in np.geomspace(1e-12, 1e-3, 997))
-    fixed = simulate(scene(**{**BAR, "time": {"end": 6.0e-5, "dt": {"cfl": 0.9}}}))
+    fixed = simulate(scene(**{**BAR, "time": {"end": 6.0e-5, "dt": {"cfl": 0.9, "update": "once"}}}))
     dt = fixed.summary["dt_s"]
     monkeypatch.setattr(StepPlan, "estimate", lambda self, u, n: dt)
     held = simulate(scene(**BAR))
@@ -108,12 +109,25 @@ def test_the_step_follows_a_crushing_taylor_bar():
     crushes; every-step runs to the end with the step falling to under 0.35 of the first
     (measured 0.294) and the energy balanced within 5e-3 (measured 1.2e-3)."""
     with pytest.raises(UnstableRun, match="deformed mesh's stable step"):
-        simulate(scene(**{**TAYLOR, "time": {"end": 4.0e-5, "dt": {"cfl": 0.9}}}))
+        simulate(scene(**{**TAYLOR, "time": {"end": 4.0e-5, "dt": {"cfl": 0.9, "update": "once"}}}))
     res = simulate(scene(**TAYLOR))
     s = res.summary
     assert s["dt_min_s"] / s["dt_s"] < 0.35 and s["dt_max_s"] == s["dt_s"]
     assert s["max_energy_balance_error"] < 5e-3
     assert s["final_time_s"] == pytest.approx(4.0e-5, rel=1e-15)
+
+
+def test_every_step_is_the_default_of_a_finite_body_on_the_wall():
+    """time.dt.update not written: every-step for the finite Taylor bar given a cfl (its foot
+    crushes), once under small kinematics and with a fixed step; written, it is kept. A reader
+    that defaulted to once everywhere (the paper's reading) fails the first assertion."""
+    def update(**over):
+        return scene(**{**TAYLOR, **over}).time.update
+    omitted = {"time": {"end": 4.0e-5, "dt": {"cfl": 0.9}}}
+    assert update(**omitted) == "every-step"
+    assert update(**omitted, kinematics="small") == "once"
+    assert update(time={"end": 4.0e-5, "dt": {"fixed": 1.0e-9}}) == "once"
+    assert update(time={"end": 4.0e-5, "dt": {"cfl": 0.9, "update": "once"}}) == "once"
 
 
 class _Shrinking:

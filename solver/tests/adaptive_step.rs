@@ -9,7 +9,9 @@
 //! - the history's rows fall at the first step at or past each `output.every`, carry the step
 //!   (`dt_s`), and the last lands on `time.end`;
 //! - the bits do not depend on the thread count;
-//! - `update: once` written out is the default (same bits).
+//! - the default of `update` is `every-step` for this finite body on the wall (same bits as
+//!   written out), `once` under small kinematics (same bits as written out), and a written
+//!   `once` keeps the step fixed.
 
 use std::path::Path;
 
@@ -84,7 +86,7 @@ fn rows_fall_at_each_interval_and_the_last_on_the_end() {
 }
 
 #[test]
-fn the_bits_do_not_depend_on_the_thread_count_and_once_is_the_default() {
+fn the_bits_do_not_depend_on_the_thread_count_and_the_defaults_are_the_written_choices() {
     let on = |threads, text: &str| {
         let text = text.to_string();
         impact_solver::workers::with_threads(threads, move || run(&text))
@@ -98,8 +100,13 @@ fn the_bits_do_not_depend_on_the_thread_count_and_once_is_the_default() {
             .collect::<Vec<_>>()
     };
     assert_eq!(bits(&one), bits(&two));
-    let fixed = BAR.replace(", update: every-step", "");
+    let omitted = BAR.replace(", update: every-step", "");
+    assert_eq!(bits(&run(&omitted)), bits(&one));
     let once = BAR.replace("every-step", "once");
-    assert_eq!(bits(&run(&fixed)), bits(&run(&once)));
     assert!(run(&once).summary.dt_min.is_none());
+    assert!(one.summary.dt_min.is_some());
+    let small = |text: &str| text.replace("kinematics: finite", "kinematics: small");
+    let small_once = run(&small(&once));
+    assert_eq!(bits(&run(&small(&omitted))), bits(&small_once));
+    assert!(small_once.summary.dt_min.is_none());
 }

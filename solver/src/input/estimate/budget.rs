@@ -44,6 +44,8 @@ pub struct Estimate {
     pub nodes: f64,
     /// Estimated stable time step times the scene's CFL fraction (or the fixed step), s.
     pub dt: f64,
+    /// The estimated stable time step itself (the bound below), s.
+    pub stable_dt: f64,
     /// Time steps to the scene's end (to `time.limit` for `after_contact`).
     pub steps: f64,
     /// History rows of the run.
@@ -114,6 +116,7 @@ impl Estimate {
             elements,
             nodes,
             dt,
+            stable_dt: dt_stable,
             steps,
             history_rows,
             history_columns,

@@ -418,10 +418,11 @@ pub struct DtFile {
     #[schemars(extend("default" = Estimate::default().name()))]
     pub estimate: Estimate,
     /// When the stable step is estimated (no unit): `once` at the start, or `every-step` on the
-    /// deformed mesh (`kinematics: finite` with `cfl` only). Default: `once`.
+    /// deformed mesh (`kinematics: finite` with `cfl` only). Default: `every-step` for a
+    /// `kinematics: finite` body on the `wall` with `cfl` (its elements are crushed), else
+    /// `once`; write `update: once` to keep a step fixed there.
     #[serde(default)]
     #[schemars(with = "Option<DtUpdate>")]
-    #[schemars(extend("default" = DtUpdate::default().name()))]
     pub update: Option<Spanned<DtUpdate>>,
 }
 

@@ -127,7 +127,8 @@ impl<'a> Validator<'a> {
         let material = self.material(file.material)?;
         let mesh = self.mesh(&file.mesh)?;
         let load = self.load(file.load, &plate)?;
-        let time = self.time(&file.time, file.kinematics)?;
+        let on_wall = matches!(load, Load::Wall(_));
+        let time = self.time(&file.time, file.kinematics, on_wall)?;
         if let Load::Wall(_) = load {
             self.wall_scene(&file.plate, &file.mesh, &file.time)?;
         }
