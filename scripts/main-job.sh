@@ -39,8 +39,21 @@ mkdir -p "$bench"
 # One optimised build of the binaries (the release profile, as `.ci/run`'s tests use), then
 # run them from target/release. --workspace, not -p: a package selection can resolve the
 # dependencies' features apart from `cargo test --workspace --release` and rebuild them.
-echo "== build: impact-bench and impact (release)"
+# The venv (the independent Python FE the matrix compares with, the uncertainty studies) is set
+# up beside the build, so that the matrix finds it on a fresh clone (mostly downloads: it
+# costs the build little).
+venv_log="$(mktemp)"
+scripts/setup-venv.sh > "$venv_log" 2>&1 &
+venv_pid=$!
+echo "== build: impact-bench and impact (release), the venv beside it"
 cargo build --release --workspace --bins
+venv_status=0
+wait "$venv_pid" || venv_status=$?
+if [[ $venv_status -ne 0 ]]; then
+    cat "$venv_log" >&2
+    echo "main-job: scripts/setup-venv.sh failed (status $venv_status): the matrix's Python comparisons and the uncertainty studies will say so" >&2
+fi
+rm -f "$venv_log"
 target_dir="$(cargo metadata --format-version 1 --no-deps | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')"
 
 bench_bin="$target_dir/release/impact-bench"
@@ -83,7 +96,7 @@ fi
 # is then at least 1.
 echo "== uncertainty studies: scripts/uq-study.py --out $out/uq"
 uq_status=0
-{ scripts/setup-venv.sh && PATH="$PWD/.venv/bin:$PATH" .venv/bin/pip install --quiet --no-build-isolation ./python \
+{ [[ $venv_status -eq 0 ]] && PATH="$PWD/.venv/bin:$PATH" .venv/bin/pip install --quiet --no-build-isolation ./python \
     && .venv/bin/python scripts/uq-study.py --out "$out/uq" --jobs "$(nproc)"; } || uq_status=$?
 if [[ $uq_status -ne 0 ]]; then
     echo "main-job: the uncertainty studies failed (status $uq_status)" >&2
