@@ -323,17 +323,25 @@ fn whole_runs(quick: bool) -> anyhow::Result<WholeRuns> {
         ] {
             let timing = timed_on(&taylor_bar(every_step), 3, KernelPath::fastest())?;
             runs.push(run_row(name, &timing, None));
-            let s = &timing.outcome.summary;
-            per_element_step.push(timing.time_loop / (s.n_steps as f64 * s.n_elements as f64));
+            per_element_step.push(ns_per_element_step(&timing));
         }
         // The re-estimation's own cost: the every-step run's time per element-step less the
-        // fixed-step run's (the same bar over the same time, its steps doing the same work).
-        let mut row = vec!["-".to_string(); 9];
-        row[0] = "taylor-bar-step-re-estimation".into();
-        row[4] = format!("{:.1}", 1e9 * (per_element_step[1] - per_element_step[0]));
+        // fixed-step run's (the same bar over the same time, its steps doing the same work);
+        // the other columns of a run do not apply.
+        let re_estimation = per_element_step[1] - per_element_step[0];
+        let mut row = vec!["taylor-bar-step-re-estimation".to_string()];
+        row.extend(["-", "-", "-"].map(String::from));
+        row.push(format!("{re_estimation:.1}"));
+        row.extend(["-", "-", "-", "-"].map(String::from));
         runs.push(row);
     }
     Ok((runs, rust_runs))
+}
+
+/// The time loop's wall time per element and step of a timed run, ns.
+fn ns_per_element_step(timing: &Timing) -> f64 {
+    let s = &timing.outcome.summary;
+    1e9 * timing.time_loop / (s.n_steps as f64 * s.n_elements as f64)
 }
 
 /// A row of the whole-run table for the run `name` timed as `timing`, against a `target` wall
@@ -345,10 +353,7 @@ fn run_row(name: &str, timing: &Timing, target: Option<f64>) -> Vec<String> {
         format!("{setup:.4}"),
         format!("{time_loop:.4}"),
         format!("{}", s.n_steps),
-        format!(
-            "{:.1}",
-            1e9 * time_loop / (s.n_steps as f64 * s.n_elements as f64)
-        ),
+        format!("{:.1}", ns_per_element_step(timing)),
         target.map_or("-".into(), |t| format!("< {t} s")),
         match target {
             None => "-",

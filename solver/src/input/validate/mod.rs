@@ -129,7 +129,7 @@ impl<'a> Validator<'a> {
         let load = self.load(file.load, &plate)?;
         let on_wall = matches!(load, Load::Wall(_));
         let time = self.time(&file.time, file.kinematics, on_wall)?;
-        if let Load::Wall(_) = load {
+        if on_wall {
             self.wall_scene(&file.plate, &file.mesh, &file.time)?;
         }
         let output = self.output(&file.output, &plate)?;

@@ -123,20 +123,13 @@ impl Validator<'_> {
                 )
             }
         };
-        if let Some(update) = &t.dt.value.update {
+        let written = t.dt.value.update.as_ref();
+        if let Some(update) = written {
             self.read(update, "time.dt.update");
         }
         let dt_update =
-            t.dt.value
-                .update
-                .as_ref()
-                .map_or_else(|| default_dt_update(dt, kinematics, on_wall), |u| u.value);
-        if let Some(update) =
-            t.dt.value
-                .update
-                .as_ref()
-                .filter(|u| u.value == DtUpdate::EveryStep)
-        {
+            written.map_or_else(|| default_dt_update(dt, kinematics, on_wall), |u| u.value);
+        if let Some(update) = written.filter(|u| u.value == DtUpdate::EveryStep) {
             let why = match (dt, kinematics) {
                 (DtChoice::Fixed(_), _) => Some("a fixed step is never re-estimated: give time.dt.cfl (a fraction of the stable estimate) with update: every-step"),
                 (_, Kinematics::Small) => Some("under small kinematics the mesh keeps its shape, so its stable step is the one at the start: use update: once, or kinematics: finite"),

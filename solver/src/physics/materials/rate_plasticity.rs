@@ -163,40 +163,20 @@ impl ViscoPlastic {
     }
 
     /// The increment `dk` of the rate-dependent consistency condition (module documentation)
-    /// per lane; 0 where the trial stress `q` (Pa) does not exceed `static_flow`, the static
-    /// flow stress at `k` and the point's temperature (Pa). Out of line, compiled once per
-    /// instruction set ([`dispatch_out_of_line`]).
+    /// per lane, for the arguments `a` ([`IncrementSolve`]); 0 where the trial stress does not
+    /// exceed the static flow stress. Inlined into [`IncrementSolve::run`], which runs out of
+    /// line, compiled once per instruction set ([`dispatch_out_of_line`]).
     #[inline(always)]
-    fn increment<R: Real>(
-        &self,
-        q: R,
-        k: R,
-        static_flow: R,
-        three_mu: f64,
-        flow: &RateFlow<R>,
-    ) -> R {
-        let solve = IncrementSolve {
-            model: self,
+    fn increment<R: Real>(&self, a: &IncrementSolve<R>) -> R {
+        let IncrementSolve {
             q,
             k,
             static_flow,
             three_mu,
-            softening: flow.softening,
-            last_increment: flow.last_increment,
-        };
-        dispatch_out_of_line(self.isa, solve)
-    }
-
-    /// [`ViscoPlastic::increment`], inlined.
-    #[inline(always)]
-    fn solve_increment<R: Real>(
-        &self,
-        q: R,
-        k: R,
-        static_flow: R,
-        three_mu: f64,
-        (softening, last_increment): (R, R),
-    ) -> R {
+            softening,
+            last_increment,
+            ..
+        } = *a;
         let running = q.gt(static_flow);
         let zero = R::splat(0.0);
         match self.law {
@@ -259,13 +239,20 @@ impl ViscoPlastic {
 }
 
 /// The arguments of [`ViscoPlastic::increment`], to run it out of line.
+#[derive(Clone, Copy)]
 struct IncrementSolve<'a, R> {
     model: &'a ViscoPlastic,
+    /// Trial von Mises stress, Pa.
     q: R,
+    /// Equivalent plastic strain at the step's start (-).
     k: R,
+    /// The static flow stress at `k` and the point's temperature, Pa.
     static_flow: R,
+    /// 3 mu, Pa.
     three_mu: f64,
+    /// `1 - T*^m` per lane.
     softening: R,
+    /// Where Johnson-Cook's Newton starts: the last step's rate times this step (-).
     last_increment: R,
 }
 
@@ -273,10 +260,7 @@ impl<R: Real> Kernel for IncrementSolve<'_, R> {
     type Output = R;
     #[inline(always)]
     fn run(self) -> R {
-        let s = self;
-        let start = (s.softening, s.last_increment);
-        s.model
-            .solve_increment(s.q, s.k, s.static_flow, s.three_mu, start)
+        self.model.increment(&self)
     }
 }
 
@@ -445,7 +429,16 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
     }
     #[inline(always)]
     fn plastic_increment(&self, q: R, k: R, flow_at_k: R, three_mu: f64) -> R {
-        self.model.increment(q, k, flow_at_k, three_mu, self)
+        let solve = IncrementSolve {
+            model: self.model,
+            q,
+            k,
+            static_flow: flow_at_k,
+            three_mu,
+            softening: self.softening,
+            last_increment: self.last_increment,
+        };
+        dispatch_out_of_line(self.model.isa, solve)
     }
     /// `q_new dk`: the returned stress (the dynamic flow stress) on the increment, the
     /// backward-Euler dissipation.
