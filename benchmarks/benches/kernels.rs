@@ -6,12 +6,11 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use impact_solver::element::Formulation;
-use impact_solver::integrator::PlateModel;
-use impact_solver::material::ConstitutiveModel;
+use impact_solver::any_model::{build_any, AnyModel};
 use impact_solver::mesh::PlateMesh;
-use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::model::Kernel;
 use impact_solver::scene::{ElementKind, End};
+use impact_solver::simd::KernelPath;
 use impact_solver::{simulate, Quiet, Scene};
 
 const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
@@ -20,37 +19,27 @@ fn scene() -> Scene {
     Scene::from_yaml(PLASTIC, Path::new("paper-plastic.yaml")).unwrap()
 }
 
-/// Benchmarks the internal forces of whatever model the factory built.
-struct KernelBench<'a, 'c> {
-    c: &'c mut Criterion,
-    name: String,
-    mesh: &'a PlateMesh,
-}
-
-impl UseModel for KernelBench<'_, '_> {
-    type Output = ();
-    fn use_model<F: Formulation, M: ConstitutiveModel>(self, mut model: PlateModel<F, M>) {
-        // Uniform strain 1e-2 (~12x the yield strain 176 MPa / 207 GPa = 8.5e-4), reversed every call: every point yields.
-        let u: Vec<f64> = self
-            .mesh
-            .mesh
-            .coords
-            .iter()
-            .flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]])
-            .collect();
-        let minus: Vec<f64> = u.iter().map(|x| -x).collect();
-        let mut f = vec![0.0; u.len()];
-        let mut flip = false;
-        let mut group = self.c.benchmark_group("element-kernel");
-        group.throughput(Throughput::Elements(model.formulation.n_elements() as u64));
-        group.bench_function(&self.name, |b| {
-            b.iter(|| {
-                flip = !flip;
-                model.internal_forces(if flip { &u } else { &minus }, &mut f)
-            })
-        });
-        group.finish();
-    }
+/// Benchmarks the internal forces of `model` as `name`.
+fn bench_kernel(c: &mut Criterion, name: &str, mesh: &PlateMesh, model: &mut dyn AnyModel) {
+    // Uniform strain 1e-2 (~12x the yield strain 176 MPa / 207 GPa = 8.5e-4), reversed every call: every point yields.
+    let u: Vec<f64> = mesh
+        .mesh
+        .coords
+        .iter()
+        .flat_map(|p| [1e-2 * p[0] + 5e-3 * p[1], -3e-3 * p[1]])
+        .collect();
+    let minus: Vec<f64> = u.iter().map(|x| -x).collect();
+    let mut f = vec![0.0; u.len()];
+    let mut flip = false;
+    let mut group = c.benchmark_group("element-kernel");
+    group.throughput(Throughput::Elements(model.n_elements() as u64));
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            flip = !flip;
+            model.internal_forces(if flip { &u } else { &minus }, &mut f)
+        })
+    });
+    group.finish();
 }
 
 fn kernels(c: &mut Criterion) {
@@ -63,12 +52,9 @@ fn kernels(c: &mut Criterion) {
             ("elastic-stress-path", Kernel::ElasticStressPath),
             ("plastic-all-yielding", Kernel::Plastic),
         ] {
-            let bench = KernelBench {
-                c: &mut *c,
-                name: format!("{}/{material}", element.name()),
-                mesh: &mesh,
-            };
-            model::build(&s, &mesh, kernel, bench).unwrap();
+            let mut model = build_any(&s, &mesh, kernel, KernelPath::fastest()).unwrap();
+            let name = format!("{}/{material}", element.name());
+            bench_kernel(c, &name, &mesh, &mut *model);
         }
     }
 }

@@ -35,12 +35,10 @@
 use std::path::Path;
 use std::time::Instant;
 
-use impact_solver::element::Formulation;
+use impact_solver::any_model::{build_any, AnyModel};
 use impact_solver::input::rate_law::{johnson_cook_42crmo4, RateLaw};
-use impact_solver::integrator::PlateModel;
-use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
-use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::model::Kernel;
 use impact_solver::scene::{ElementKind, Hardening, Scene};
 use impact_solver::simd::KernelPath;
 use impact_solver::workers;
@@ -63,12 +61,7 @@ fn uniform_strain(mesh: &PlateMesh, amplitude: f64) -> Vec<f64> {
 
 /// Best ns per element over `reps` batches of `calls` internal-force evaluations,
 /// alternating between `u` and `-u` (for plastic materials: every point yields every call).
-fn kernel_ns<F: Formulation, M: ConstitutiveModel>(
-    model: &mut PlateModel<F, M>,
-    u: &[f64],
-    calls: usize,
-    reps: usize,
-) -> f64 {
+fn kernel_ns(model: &mut dyn AnyModel, u: &[f64], calls: usize, reps: usize) -> f64 {
     let minus: Vec<f64> = u.iter().map(|x| -x).collect();
     let mut f = vec![0.0; u.len()];
     let mut best = f64::INFINITY;
@@ -85,25 +78,7 @@ fn kernel_ns<F: Formulation, M: ConstitutiveModel>(
             best = best.min(started.elapsed().as_secs_f64());
         }
     }
-    1e9 * best / (calls * model.formulation.n_elements()) as f64
-}
-
-/// Times the internal forces of whatever model the factory built.
-struct KernelTimer<'a> {
-    u: &'a [f64],
-    calls: usize,
-    reps: usize,
-    /// kg/m^3, for the time step a rate-dependent material is told (0.8 of the stable one).
-    density: f64,
-}
-
-impl UseModel for KernelTimer<'_> {
-    type Output = f64;
-    fn use_model<F: Formulation, M: ConstitutiveModel>(self, mut model: PlateModel<F, M>) -> f64 {
-        let dt = 0.8 * model.critical_time_step(self.density);
-        model.material.set_time_step(dt);
-        kernel_ns(&mut model, self.u, self.calls, self.reps)
-    }
+    1e9 * best / (calls * model.n_elements()) as f64
 }
 
 /// The plastic paper scene with the rate law of `material` (a name of [`MATERIALS`]): mild
@@ -176,16 +151,14 @@ fn measure(case: &Case, quick: bool, path: KernelPath, threads: usize) -> f64 {
         "elastic-stress-path" | "elastic-finite" => Kernel::ElasticStressPath,
         _ => Kernel::Plastic,
     };
-    let timer = KernelTimer {
-        u: &u,
-        calls,
-        reps,
-        density: scene.material.density,
-    };
+    // The model takes its thread count where it is built.
     workers::with_threads(threads, || {
-        model::build_on(&scene, &mesh, kernel, path, timer)
+        let mut model =
+            build_any(&scene, &mesh, kernel, path).expect("the paper scenes build every model");
+        // A rate-dependent material is told 0.8 of the stable step.
+        model.set_time_step(0.8 * model.critical_time_step(scene.material.density));
+        kernel_ns(&mut *model, &u, calls, reps)
     })
-    .expect("the paper scenes build every model")
 }
 
 pub fn run(out: &Path, quick: bool) -> anyhow::Result<()> {

@@ -30,7 +30,8 @@ pub use physics::{
 };
 pub use run::summary;
 pub use time_loop::{
-    energy, history, integrator, internal_forces, interrupt, model, progress, stable_step,
+    any_model, energy, history, integrator, internal_forces, interrupt, model, progress,
+    stable_step,
 };
 
 pub use input::error::{Error, Result};

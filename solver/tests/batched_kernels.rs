@@ -17,13 +17,11 @@
 
 use std::path::Path;
 
-use impact_solver::element::Formulation;
+use impact_solver::any_model::{build_any, AnyModel};
 use impact_solver::input::geometry::Geometry;
 use impact_solver::input::rate_law::{johnson_cook_42crmo4, RateLaw};
-use impact_solver::integrator::PlateModel;
-use impact_solver::material::ConstitutiveModel;
 use impact_solver::mesh::PlateMesh;
-use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::model::Kernel;
 use impact_solver::scene::{ElementKind, Hardening, Kinematics, Model, Plasticity};
 use impact_solver::simd::{Isa, KernelPath, LANES};
 use impact_solver::{simulate_on, History, Quiet, Scene};
@@ -69,10 +67,7 @@ impl Random {
 }
 
 /// Every bit a kernel call produces: nodal forces, energies and the material states.
-fn trace_of<F: Formulation, M: ConstitutiveModel>(
-    model: &mut PlateModel<F, M>,
-    u: &[f64],
-) -> Vec<String> {
+fn trace_of(model: &mut dyn AnyModel, u: &[f64]) -> Vec<String> {
     let mut f = vec![0.0; u.len()];
     let e = model.internal_forces(u, &mut f);
     let mut out: Vec<String> = f.iter().map(|x| format!("{:016x}", x.to_bits())).collect();
@@ -81,26 +76,27 @@ fn trace_of<F: Formulation, M: ConstitutiveModel>(
     }
     // Debug prints each f64 in its shortest round-trip form (and -0.0 as such): equal
     // strings are equal bits.
-    let n = model.formulation.n_elements();
+    let points = model.points_per_element();
     out.extend(
-        (0..n)
-            .flat_map(|e| (0..F::POINTS).map(move |p| (e, p)))
-            .map(|(e, p)| format!("{:?}", model.state(e, p))),
+        (0..model.n_elements())
+            .flat_map(|e| (0..points).map(move |p| (e, p)))
+            .map(|(e, p)| model.state_debug(e, p)),
     );
     out
 }
 
-/// Runs the internal forces for each displacement field in turn, tracing every call.
-struct Trace<'a>(&'a [Vec<f64>]);
-impl UseModel for Trace<'_> {
-    type Output = Vec<Vec<String>>;
-    fn use_model<F: Formulation, M: ConstitutiveModel>(
-        self,
-        mut model: PlateModel<F, M>,
-    ) -> Vec<Vec<String>> {
-        model.material.set_time_step(RATE_DT);
-        self.0.iter().map(|u| trace_of(&mut model, u)).collect()
-    }
+/// The model of `s` with `kernel` on `path`, run on each displacement field in turn, every
+/// call traced.
+fn trace(
+    s: &Scene,
+    mesh: &PlateMesh,
+    kernel: Kernel,
+    path: KernelPath,
+    u: &[Vec<f64>],
+) -> Vec<Vec<String>> {
+    let mut model = build_any(s, mesh, kernel, path).unwrap();
+    model.set_time_step(RATE_DT);
+    u.iter().map(|u| trace_of(&mut *model, u)).collect()
 }
 
 /// Displacement fields of random direction growing along x (elements near the clamp stay
@@ -215,10 +211,9 @@ fn batched_kernels_are_bit_identical_to_the_scalar_ones() {
                 }
                 let mesh = PlateMesh::of_scene(&s);
                 let u = fields(&mesh, &mut random, s.plate.length);
-                let reference =
-                    model::build_on(&s, &mesh, kernel, KernelPath::Scalar, Trace(&u)).unwrap();
+                let reference = trace(&s, &mesh, kernel, KernelPath::Scalar, &u);
                 for &path in &paths {
-                    let traced = model::build_on(&s, &mesh, kernel, path, Trace(&u)).unwrap();
+                    let traced = trace(&s, &mesh, kernel, path, &u);
                     for (call, (a, b)) in reference.iter().zip(&traced).enumerate() {
                         assert!(
                             a == b,

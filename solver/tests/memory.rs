@@ -16,31 +16,14 @@
 
 use std::path::Path;
 
-use impact_solver::element::Formulation;
-use impact_solver::integrator::PlateModel;
-use impact_solver::material::ConstitutiveModel;
+use impact_solver::any_model::build_any;
 use impact_solver::mesh::PlateMesh;
-use impact_solver::model::{self, Kernel, UseModel};
+use impact_solver::model::Kernel;
 use impact_solver::scene::ElementKind;
+use impact_solver::simd::KernelPath;
 use impact_solver::Scene;
 
 const PAPER_PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
-
-/// (total, geometry) heap bytes per element of the built model.
-struct BytesPerElement;
-impl UseModel for BytesPerElement {
-    type Output = (f64, f64);
-    fn use_model<F: Formulation, M: ConstitutiveModel>(
-        self,
-        model: PlateModel<F, M>,
-    ) -> (f64, f64) {
-        let n = model.formulation.n_elements() as f64;
-        (
-            model.heap_bytes() as f64 / n,
-            model.formulation.heap_bytes() as f64 / n,
-        )
-    }
-}
 
 #[test]
 fn the_paper_plastic_model_holds_at_most_300_bytes_per_element() {
@@ -52,8 +35,10 @@ fn the_paper_plastic_model_holds_at_most_300_bytes_per_element() {
         let mut scene = Scene::from_yaml(PAPER_PLASTIC, Path::new("paper-plastic.yaml")).unwrap();
         scene.mesh.element = element;
         let mesh = PlateMesh::new(&scene.plate, &scene.mesh);
-        let (total, geometry) =
-            model::build(&scene, &mesh, Kernel::Solver, BytesPerElement).unwrap();
+        let built = build_any(&scene, &mesh, Kernel::Solver, KernelPath::fastest()).unwrap();
+        let n = built.n_elements() as f64;
+        let (total, geometry) = built.heap_bytes();
+        let (total, geometry) = (total as f64 / n, geometry as f64 / n);
         println!(
             "{}: {total:.1} bytes per element, geometry {geometry:.1}",
             element.name()

@@ -6,6 +6,7 @@
 //! ([`surface_coupling`]), what it records ([`history`]) and when ([`schedule`]), and how it
 //! is watched and stopped ([`observer`], [`progress`], [`interrupt`]).
 
+pub mod any_model;
 pub mod energy;
 pub mod history;
 pub mod integrator;
