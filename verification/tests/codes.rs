@@ -4,7 +4,8 @@
 //! behaviour the environment chooses:
 //! - `--code fake` evaluates the same checks on what the adapter wrote: OK where it agrees,
 //!   FAIL where it does not (exit 1), FAIL* where its `expected.yaml` declares it (exit 0);
-//!   a key it did not write and a builtin's measure are N/E, never OK or FAIL;
+//!   a key it did not write, a builtin's measure and a reference from a scene it refused are
+//!   N/E, never OK or FAIL;
 //! - the adapter sees the resolved scene (`scene.yaml` and `scene.json`) and its kept files
 //!   land in `codes/fake/runs/`;
 //! - exit status 3 makes every check of the scene N/E with the adapter's line; a crash, a
@@ -12,7 +13,8 @@
 //!   are one message naming the code and the scene, and the scratch folder is gone;
 //! - `--results-from DIR` reads the same files; a scene with no folder is N/E, a malformed
 //!   file names itself and its line;
-//! - an unknown code is refused before any run (exit 2), naming the adapters there are.
+//! - an unknown code is refused before any run (exit 2), naming the adapters there are;
+//! - one scene file that two cases read through two relative paths is run once.
 //!
 //! A harness that evaluated nothing on the other code (or evaluated impact's runs under its
 //! name) fails the first test: the fake adapter's deflection is not impact's.
@@ -42,6 +44,7 @@ category: code verification
 scenes:
   plate: {file: plate.yaml}
   law: {builtin: hertz-law}
+  refused: {file: plate.yaml, set: {time.dt.cfl: 0.25}}
 checks:
   - id: impulse
     title: impulse = F t
@@ -64,6 +67,11 @@ checks:
     measure: {scene: plate, metric: peak_contact_force_N}
     reference: {kind: analytical, value: 1000.0, source: \"the pulse\"}
     tolerance: {relative: 1.0e-6, reason: \"test\"}
+  - id: against-refused
+    title: the plate against itself at half the step, a scene the fake code refuses
+    measure: {scene: plate, error: {column: mid_uy_m, norm: linf}}
+    reference: {kind: invariant, value: 0.0, history: {scene: refused, column: mid_uy_m}, source: \"the same plate\"}
+    tolerance: {absolute: 0.05, reason: \"test: the step's effect on the deflection; the fake code's status is what is read\"}
   - id: builtin
     title: impact's own kernel
     measure: {scene: law, metric: round_trip_max_rel}
@@ -77,6 +85,8 @@ checks:
 const ADAPTER: &str = r#"#!/bin/sh
 scene="$1"; out="$2"
 grep -q '^plate:' "$scene" || { echo "no scene.yaml" >&2; exit 9; }
+[ -n "$FAKE_LOG" ] && echo "$out" >> "$FAKE_LOG"
+grep -q '"cfl": 0.25' "$out/scene.json" && { echo "not expressible: time.dt.cfl: 0.25 is too small for fake" >&2; exit 3; }
 grep -q '"nx": 4' "$out/scene.json" || { echo "no scene.json" >&2; exit 9; }
 case "$FAKE_MODE" in
   ok)
@@ -176,13 +186,20 @@ fn the_same_checks_are_evaluated_on_the_other_code() {
     assert_eq!(status(&stdout, "fake", "wrong"), "FAIL*");
     assert_eq!(status(&stdout, "fake", "unwritten"), "N/E");
     assert_eq!(status(&stdout, "fake", "builtin"), "N/E");
+    // A reference the fake code computes from a scene it refused: N/E, not FAIL.
+    assert_eq!(status(&stdout, "fake", "against-refused"), "N/E");
+    assert_eq!(
+        status(&stdout, "impact", "against-refused"),
+        "OK",
+        "{stdout}"
+    );
     assert!(stdout.contains("not produced by fake"), "{stdout}");
     let results = std::fs::read_to_string(root.join("out/results.json")).unwrap();
     let results: serde_json::Value = serde_json::from_str(&results).unwrap();
     assert_eq!(results["cases"][0]["code"], "impact");
     assert_eq!(results["codes"][0]["code"], "fake");
     assert_eq!(results["codes"][0]["cases"][0]["code"], "fake");
-    assert_eq!(results["codes"][0]["counts"]["not_expressible"], 2);
+    assert_eq!(results["codes"][0]["counts"]["not_expressible"], 3);
     // The builtin only measured is impact's own computation: not run for the other code.
     assert!(results["cases"][0]["metrics"]["law"].is_object());
     assert!(results["codes"][0]["cases"][0]["metrics"]["law"].is_null());
@@ -201,6 +218,56 @@ fn the_same_checks_are_evaluated_on_the_other_code() {
     // The fake code alone: its one failure is declared, N/E is no failure: exit 0.
     let (code, stdout, _) = verify(&root, "ok", &["--code", "fake"]);
     assert_eq!(code, 0, "{stdout}");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
+fn one_scene_file_read_by_two_cases_is_run_once() {
+    let root = scratch(
+        "suite/case/wrong: \"the fake code's own known failure\"\n",
+        60.0,
+    );
+    // Two cases read one scene file through two relative paths, as the repository's cases
+    // read verification/scenes/.
+    let scenes = root.join("verification/scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::write(scenes.join("plate.yaml"), SCENE).unwrap();
+    let shared = |id: &str| {
+        CASE.replace("id: c1", &format!("id: {id}"))
+            .replace("REQ-1", &format!("REQ-{id}"))
+            .replace("{file: plate.yaml", "{file: ../../../scenes/plate.yaml")
+    };
+    std::fs::write(
+        root.join("verification/cases/suite/case/case.yaml"),
+        shared("c1"),
+    )
+    .unwrap();
+    let second = root.join("verification/cases/suite/other");
+    std::fs::create_dir_all(&second).unwrap();
+    std::fs::write(second.join("case.yaml"), shared("c2")).unwrap();
+    let adapter = root.join("adapters/fake/adapter.yaml");
+    let yaml = std::fs::read_to_string(&adapter).unwrap();
+    let yaml = yaml.replace("cases: [suite/case]", "cases: [suite/case, suite/other]");
+    std::fs::write(&adapter, yaml).unwrap();
+    let log = root.join("runs.log");
+    let o = Command::new(env!("CARGO_BIN_EXE_impact"))
+        .args(["verify", "--jobs", "1", "--code", "fake", "--root"])
+        .arg(&root)
+        .arg("--out")
+        .arg(root.join("out"))
+        .env("FAKE_MODE", "ok")
+        .env("FAKE_LOG", &log)
+        .env("TMPDIR", root.join("tmp"))
+        .output()
+        .expect("run impact");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let deflections = stdout
+        .lines()
+        .filter(|l| l.starts_with("fake") && l.contains(" deflection ") && l.contains(" OK "));
+    assert_eq!(deflections.count(), 2, "both cases judged\n{stdout}");
+    // The plate and its refused variant, once each, for both cases.
+    let runs = std::fs::read_to_string(&log).unwrap();
+    assert_eq!(runs.lines().count(), 2, "{runs}\n{stdout}");
     let _ = std::fs::remove_dir_all(&root);
 }
 

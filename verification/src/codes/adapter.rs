@@ -9,7 +9,6 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, Ordering};
 
 use impact_solver::Scene;
 use serde::Deserialize;
@@ -111,7 +110,7 @@ impl Adapter {
 
     /// Runs `scene` through the adapter (see the module's documentation).
     pub fn run(&self, scene: &Scene) -> Result<RunData, String> {
-        let scratch = Scratch::new(&self.name)?;
+        let scratch = super::process::Scratch::new(&self.name)?;
         let dir = &scratch.0;
         let yaml = dir.join("scene.yaml");
         let value = scene.to_file_value();
@@ -129,7 +128,6 @@ impl Adapter {
             &self.dir,
             &log,
             self.timeout_s,
-            dir,
         )?;
         let source = scene.source.display();
         let tail = done.tail.join(" | ");
@@ -193,24 +191,4 @@ pub fn known(root: &Path) -> Vec<String> {
         .unwrap_or_default();
     names.sort();
     names
-}
-
-/// A scratch folder under the system's temporary folder, removed when dropped.
-struct Scratch(PathBuf);
-
-impl Scratch {
-    fn new(code: &str) -> Result<Scratch, String> {
-        static COUNT: AtomicU64 = AtomicU64::new(0);
-        let n = COUNT.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("impact-{code}-{}-{n}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        Ok(Scratch(dir))
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
 }

@@ -1,21 +1,66 @@
 //! An adapter's process: started in its own process group (so that a time limit or Ctrl-C
 //! reaches the code it starts, e.g. `ccx`, and not only the adapter), waited for in a bounded
 //! loop that polls the stop request every [`POLL`], and killed with its group past its time
-//! limit. Running groups and their scratch folders are registered, so that the command
-//! line's signal handler ([`stop_all`]) kills them and removes what they wrote.
+//! limit. Scratch folders are registered from their creation ([`Scratch`]) and running
+//! groups from their start, under one lock with a "stopped" mark, so that the command line's
+//! signal handler ([`stop_all`]) kills them and removes what they wrote, and no folder or
+//! group starts after it (a worker that took its next job while the handler ran).
 
-use std::collections::BTreeMap;
+use std::collections::BTreeSet;
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 /// How often the wait loop looks at the child and the stop request.
 pub const POLL: Duration = Duration::from_millis(50);
 
-/// The running adapters: process group id -> scratch folder.
-static RUNNING: Mutex<BTreeMap<i32, PathBuf>> = Mutex::new(BTreeMap::new());
+/// The adapters' scratch folders and running process groups, and whether [`stop_all`] ran.
+struct Running {
+    stopped: bool,
+    folders: BTreeSet<PathBuf>,
+    groups: BTreeSet<i32>,
+}
+
+static RUNNING: Mutex<Running> = Mutex::new(Running {
+    stopped: false,
+    folders: BTreeSet::new(),
+    groups: BTreeSet::new(),
+});
+
+const STOPPED: &str = "interrupted";
+
+/// A scratch folder under the temporary folder, registered while it exists and removed when
+/// dropped; none is made after [`stop_all`].
+pub struct Scratch(pub PathBuf);
+
+impl Scratch {
+    /// A fresh folder `impact-CODE-PID-N`.
+    pub fn new(code: &str) -> Result<Scratch, String> {
+        static COUNT: AtomicU64 = AtomicU64::new(0);
+        let n = COUNT.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("impact-{code}-{}-{n}", std::process::id()));
+        let mut running = RUNNING.lock().map_err(|_| STOPPED)?;
+        if running.stopped {
+            return Err(STOPPED.into());
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        running.folders.insert(dir.clone());
+        Ok(Scratch(dir))
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+        if let Ok(mut r) = RUNNING.lock() {
+            r.folders.remove(&self.0);
+        }
+    }
+}
 
 /// How a process ended.
 #[derive(Debug)]
@@ -37,15 +82,14 @@ pub struct Finished {
     pub wall_time_s: f64,
 }
 
-/// Runs `program args` in `cwd`, its output to `log`, in its own process group; `scratch`
-/// is the folder it writes (removed by [`stop_all`] if the command line is stopped).
+/// Runs `program args` in `cwd`, its output to `log`, in its own process group (none after
+/// [`stop_all`]).
 pub fn run(
     program: &[String],
     args: &[&Path],
     cwd: &Path,
     log: &Path,
     timeout_s: f64,
-    scratch: &Path,
 ) -> Result<Finished, String> {
     let (first, rest) = program
         .split_first()
@@ -53,20 +97,25 @@ pub fn run(
     let out = std::fs::File::create(log).map_err(|e| format!("{}: {e}", log.display()))?;
     let err = out.try_clone().map_err(|e| e.to_string())?;
     let started = Instant::now();
-    let mut child = Command::new(first)
-        .args(rest)
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .stdout(out)
-        .stderr(err)
-        .process_group(0)
-        .spawn()
-        .map_err(|e| format!("cannot start {first:?} in {}: {e}", cwd.display()))?;
+    let mut child = {
+        let mut running = RUNNING.lock().map_err(|_| STOPPED)?;
+        if running.stopped {
+            return Err(STOPPED.into());
+        }
+        let child = Command::new(first)
+            .args(rest)
+            .args(args)
+            .current_dir(cwd)
+            .stdin(Stdio::null())
+            .stdout(out)
+            .stderr(err)
+            .process_group(0)
+            .spawn()
+            .map_err(|e| format!("cannot start {first:?} in {}: {e}", cwd.display()))?;
+        running.groups.insert(child.id() as i32);
+        child
+    };
     let group = child.id() as i32;
-    if let Ok(mut r) = RUNNING.lock() {
-        r.insert(group, scratch.to_path_buf());
-    }
     let ended = loop {
         match child.try_wait() {
             Ok(Some(status)) => break Ended::Exited(status.code()),
@@ -83,7 +132,7 @@ pub fn run(
         std::thread::sleep(POLL);
     };
     if let Ok(mut r) = RUNNING.lock() {
-        r.remove(&group);
+        r.groups.remove(&group);
     }
     Ok(Finished {
         ended,
@@ -122,16 +171,19 @@ fn terminate(group: i32) {
     }
 }
 
-/// Kills every running adapter's group and removes its scratch folder: for the command
-/// line's signal handler, before it exits.
+/// Kills every running adapter's group and removes every scratch folder, and lets none
+/// start after: for the command line's signal handler, before it exits. The lock is held to
+/// the end, so a worker that takes its next job meanwhile waits and is then refused.
 pub fn stop_all() {
-    let running = match RUNNING.lock() {
-        Ok(mut r) => std::mem::take(&mut *r),
-        Err(_) => return,
+    let Ok(mut running) = RUNNING.lock() else {
+        return;
     };
-    for (group, scratch) in running {
+    running.stopped = true;
+    for &group in &running.groups {
         terminate(group);
-        let _ = std::fs::remove_dir_all(scratch);
+    }
+    for folder in &running.folders {
+        let _ = std::fs::remove_dir_all(folder);
     }
 }
 

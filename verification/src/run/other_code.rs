@@ -28,16 +28,32 @@ pub fn judge(
         .cloned();
     let mut read = Vec::new();
     scenes_read(&k.measure.value, case.default_scene(), results, &mut read);
-    let why = read.iter().find_map(|name| {
-        if case.file.scenes.get(name).is_some_and(|s| s.value.builtin.is_some()) {
-            return Some(format!(
-                "not expressible: measures impact's own computation (builtin {name}), not a run of {code}"
-            ));
+    let builtin = read.iter().find_map(|name| {
+        let s = case.file.scenes.get(name)?;
+        s.value.builtin.is_some().then(|| {
+            format!("not expressible: measures impact's own computation (builtin {name}), not a run of {code}")
+        })
+    });
+    // A reference the same code computes from a scene it refused is not expressible either
+    // (a surface coupling compared with the nodal one on the same plate); a builtin's
+    // reference (a closed form, a modal solution) stays what it is.
+    if let Some(reference) = &k.reference {
+        if let Some(m) = &reference.value.metric {
+            scenes_read(m, case.default_scene(), results, &mut read);
         }
-        match results.get(name) {
+        read.extend(
+            reference
+                .value
+                .history
+                .as_ref()
+                .and_then(|h| h.scene.clone()),
+        );
+    }
+    let why = builtin.or_else(|| {
+        read.iter().find_map(|name| match results.get(name) {
             Some(Err(e)) if is_not_expressible(e) => Some(e.clone()),
             _ => None,
-        }
+        })
     });
     let not_produced = r.status == Status::Fail
         && r.computed.is_none()
