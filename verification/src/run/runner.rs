@@ -27,20 +27,23 @@ pub fn verify(repo: &Repo, opts: &Options) -> Result<Outcome, Vec<String>> {
     verify_codes(repo, opts, &[Code::Impact])
 }
 
-/// [`verify`] on each of `codes` in turn (issue 38): the same cases' checks, references and
-/// tolerances evaluated on each code's results; `impact`'s rows are the matrix's own (none
-/// when it is not among the codes), the others' rows follow code by code.
+/// [`verify`] on each of `codes` (issue 38): the same cases' checks, references and
+/// tolerances evaluated on each code's results, every code's jobs in one pool (another code's
+/// first, [`job_loop::run_shares`]); `impact`'s rows are the matrix's own (none when it is not
+/// among the codes), the others' rows follow code by code.
 pub fn verify_codes(repo: &Repo, opts: &Options, codes: &[Code]) -> Result<Outcome, Vec<String>> {
     let started = std::time::Instant::now();
     let loaded = load(repo)?;
-    let mut outcome = None;
-    let mut others = Vec::new();
+    let mut plans = Vec::new();
     for code in codes {
         if codes.len() > 1 {
             eprintln!("== {}: {}", code.name(), code.description());
         }
-        let plan = plan_for(&loaded, opts, code.clone())?;
-        let o = run_plan(repo, &plan, opts)?;
+        plans.push(plan_for(&loaded, opts, code.clone())?);
+    }
+    let mut outcome = None;
+    let mut others = Vec::new();
+    for (code, o) in codes.iter().zip(run_plans(repo, &plans, opts)?) {
         match code {
             Code::Impact => outcome = Some(o),
             _ => others.push((code, o)),
@@ -71,24 +74,30 @@ pub fn verify_codes(repo: &Repo, opts: &Options, codes: &[Code]) -> Result<Outco
     Ok(outcome)
 }
 
-/// The plan's jobs run and its cases judged.
-fn run_plan(repo: &Repo, plan: &Plan, opts: &Options) -> Result<Outcome, Vec<String>> {
-    let all: Vec<usize> = (0..plan.jobs.len()).collect();
+/// The plans' jobs run in one pool and each plan's cases judged.
+fn run_plans(repo: &Repo, plans: &[Plan], opts: &Options) -> Result<Vec<Outcome>, Vec<String>> {
     let judge = Judge {
         repo,
         filter: &opts.filter,
     };
-    let (finished, judged) = job_loop::run_jobs(plan, &all, opts.jobs, opts.progress, Some(&judge))
-        .map_err(|e| vec![e])?;
-    let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
-    for (i, r) in finished {
-        slots[i] = Some(r);
-    }
-    Ok(case_rows::assemble_judged(
-        repo,
-        plan,
-        slots,
-        &opts.filter,
-        judged,
-    ))
+    let shares: Vec<job_loop::Share> = plans
+        .iter()
+        .map(|plan| job_loop::Share {
+            plan,
+            which: (0..plan.jobs.len()).collect(),
+            judge: Some(&judge),
+        })
+        .collect();
+    let done = job_loop::run_shares(&shares, opts.jobs, opts.progress).map_err(|e| vec![e])?;
+    Ok(plans
+        .iter()
+        .zip(done)
+        .map(|(plan, (finished, judged))| {
+            let mut slots: Vec<Option<JobResult>> = vec![None; plan.jobs.len()];
+            for (i, r) in finished {
+                slots[i] = Some(r);
+            }
+            case_rows::assemble_judged(repo, plan, slots, &opts.filter, judged)
+        })
+        .collect())
 }
