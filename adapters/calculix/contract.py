@@ -26,6 +26,11 @@ def summary(s, cols, rows, n_elements, dt):
         out["max_von_mises_Pa"] = {p: max(r[f"{p}_von_mises_Pa"] for r in rows) for p in probes}
     if dt:
         out["dt_s"] = dt
+    if kind == "impactor":
+        out["contact_intervals_s"] = contact_intervals(times, force)
+        out["contact_duration_s"] = out["contact_intervals_s"][-1][1] if out[
+            "contact_intervals_s"] else 0.0
+        out["final_impactor_velocity_mps"] = rows[-1]["impactor_velocity_mps"]
     if kind == "wall":
         last = rows[-1]
         # ccx's reaction holds the landing's stop: it is the one-step force; the bearing
@@ -34,6 +39,22 @@ def summary(s, cols, rows, n_elements, dt):
                        "length_ratio": last["bar_length_m"] / float(s["plate"]["thickness"]),
                        "foot_radius_m": last["foot_radius_m"],
                        "max_foot_radius_m": max(r["foot_radius_m"] for r in rows)}
+    return out
+
+
+def contact_intervals(times, force):
+    """[start, end] pairs, s, as impact defines them (ALGORITHM.md 8): contact starts at the
+    first row with a force > 0 after a zero, ends at the first later row with none; an
+    interval still open at the last row ends there."""
+    out, start = [], None
+    for t, f in zip(times, force):
+        if f > 0.0 and start is None:
+            start = t
+        elif f <= 0.0 and start is not None:
+            out.append([start, t])
+            start = None
+    if start is not None:
+        out.append([start, times[-1]])
     return out
 
 

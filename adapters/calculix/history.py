@@ -26,6 +26,8 @@ def load_force(s, t):
 def columns(s, probes):
     """The history header, in impact's column order."""
     cols = ["time_s", "contact_force_N"]
+    if s["load"][0] == "impactor":
+        cols += ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
     if s["load"][0] == "wall":
         cols += ["foot_radius_m", "bar_length_m"]
     cols += ["top_uy_m", "mid_uy_m", "bottom_uy_m"]
@@ -44,7 +46,10 @@ def initial_row(s, mesh, probes):
     if s["load"][0] == "wall":
         return None
     row = {c: 0.0 for c in columns(s, probes)}
-    row["contact_force_N"] = load_force(s, 0.0)
+    if s["load"][0] == "impactor":
+        row["impactor_velocity_mps"] = float(s["load"][1]["velocity"])
+    else:
+        row["contact_force_N"] = load_force(s, 0.0)
     return row
 
 
@@ -74,6 +79,17 @@ def wedge_row(mesh, w, blocks, k, factor):
     return row
 
 
+def impactor_columns(blocks, k, factor, top_uy):
+    """The nose's columns of the k-th output (nose.py): the contact force on the plate's top
+    surface (ccx's CF, whole width), the nose's displacement and velocity positive toward the
+    plate, and the indentation delta_S + u_y of the top mid-span node (ALGORITHM.md 8)."""
+    force = block_at(blocks, "CF", "SPLATE", k)[1][0]
+    (u,) = nodal(block_at(blocks, "U", "NREF", k)[1]).values()
+    (v,) = nodal(block_at(blocks, "V", "NREF", k)[1]).values()
+    return {"contact_force_N": -force[1] * factor, "impactor_displacement_m": -u[1],
+            "impactor_velocity_mps": -v[1], "indentation_m": -u[1] + top_uy}
+
+
 def row_at(s, mesh, probes, blocks, k, factor, launch):
     """The k-th ccx output as a history row {column: value}; launch = (time offset s,
     lift m) of the wall's launch step (ccx's time and u_y start before the landing)."""
@@ -94,6 +110,8 @@ def row_at(s, mesh, probes, blocks, k, factor, launch):
         foot = nodal(block_at(blocks, "U", "NFOOT", k)[1])
         row["foot_radius_m"] = max(mesh.ccx_xy(n - 1)[0] + v[0] for n, v in foot.items())
         row["bar_length_m"] = mesh.h + row["top_uy_m"] - row["bottom_uy_m"]
+    elif s["load"][0] == "impactor":
+        row.update(impactor_columns(blocks, k, factor, row["top_uy_m"]))
     else:
         row["contact_force_N"] = load_force(s, row["time_s"])
     if probes:

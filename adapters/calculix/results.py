@@ -1,12 +1,17 @@
 """Read ccx's job.dat: the blocks of *NODE PRINT / *EL PRINT, by kind, set and time.
 
 A block starts with a header such as ' displacements (vx,vy,vz) for set NMID and time  0.1E-05'
-or ' total internal energy for set EALL and time ...', then rows of numbers.
+or ' total internal energy for set EALL and time ...', then rows of numbers. A *CONTACT PRINT
+CF block (' statistics for slave set S, master set M and time ...') is kept under ('CF', S):
+its rows are the numeric lines between its captions, the first the total surface force on the
+slave surface and its moment about the origin (fx, fy, fz, mx, my, mz).
 """
 
 import re
 
 HEADER = re.compile(r"^\s*(?P<what>.+?)\s+for set\s+(?P<set>\S+)\s+and time\s+(?P<t>\S+)\s*$")
+CONTACT = re.compile(r"^\s*statistics for slave set\s+(?P<set>[^,\s]+),\s*master set\s+\S+"
+                     r"\s+and time\s+(?P<t>\S+)\s*$")
 
 KINDS = {  # header text -> short name
     "displacements (vx,vy,vz)": "U",
@@ -14,6 +19,7 @@ KINDS = {  # header text -> short name
     "total internal energy": "ELSE",
     "total kinetic energy": "ELKE",
     "total force (fx,fy,fz)": "RF",
+    "velocities (vx,vy,vz)": "V",
 }
 
 
@@ -36,13 +42,19 @@ def parse(path):
             text = f.read().splitlines()
     except OSError as e:
         raise DatError(f"cannot read {path}: {e.strerror}") from e
-    blocks, current = {}, None
+    blocks, current, captions = {}, None, False
     for line in text:
-        m = HEADER.match(line)
-        if m:
+        m, c = HEADER.match(line), CONTACT.match(line)
+        if c:
+            current, captions = [], True
+            blocks.setdefault(("CF", c.group("set")), []).append((number(c.group("t")), current))
+        elif m:
+            captions = False
             kind = KINDS.get(m.group("what").strip(), m.group("what").strip())
             current = []
             blocks.setdefault((kind, m.group("set")), []).append((number(m.group("t")), current))
+        elif captions and line.strip() and line.strip()[0].isalpha():
+            continue  # a caption of the contact statistics
         elif line.strip() and current is not None:
             current.append([number(v) for v in line.split() if v != "L"])  # L: local dofs
     return blocks
