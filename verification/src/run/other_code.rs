@@ -37,18 +37,7 @@ pub fn judge(
     // A reference the same code computes from a scene it refused is not expressible either
     // (a surface coupling compared with the nodal one on the same plate); a builtin's
     // reference (a closed form, a modal solution) stays what it is.
-    if let Some(reference) = &k.reference {
-        if let Some(m) = &reference.value.metric {
-            scenes_read(m, case.default_scene(), results, &mut read);
-        }
-        read.extend(
-            reference
-                .value
-                .history
-                .as_ref()
-                .and_then(|h| h.scene.clone()),
-        );
-    }
+    reference_scenes_read(k, case, results, &mut read);
     let why = builtin.or_else(|| {
         read.iter().find_map(|name| match results.get(name) {
             Some(Err(e)) if is_not_expressible(e) => Some(e.clone()),
@@ -74,15 +63,7 @@ pub fn judge(
 pub fn referenced_builtins(case: &Case) -> BTreeSet<String> {
     let mut read = Vec::new();
     for k in &case.file.checks {
-        let Some(r) = &k.value.reference else {
-            continue;
-        };
-        if let Some(m) = &r.value.metric {
-            scenes_read(m, case.default_scene(), &BTreeMap::new(), &mut read);
-        }
-        if let Some(s) = r.value.history.as_ref().and_then(|h| h.scene.clone()) {
-            read.push(s);
-        }
+        reference_scenes_read(&k.value, case, &BTreeMap::new(), &mut read);
     }
     read.into_iter()
         .filter(|n| {
@@ -99,6 +80,28 @@ fn not_expressible(r: &mut CheckResult, why: String) {
     r.message = why;
     r.computed = None;
     r.error = None;
+}
+
+/// The scenes a check's reference reads: its metric's, its history's.
+fn reference_scenes_read(
+    k: &CheckFile,
+    case: &Case,
+    results: &BTreeMap<String, JobResult>,
+    out: &mut Vec<String>,
+) {
+    let Some(reference) = &k.reference else {
+        return;
+    };
+    if let Some(m) = &reference.value.metric {
+        scenes_read(m, case.default_scene(), results, out);
+    }
+    out.extend(
+        reference
+            .value
+            .history
+            .as_ref()
+            .and_then(|h| h.scene.clone()),
+    );
 }
 
 /// The scenes (and series levels) a measure reads.
