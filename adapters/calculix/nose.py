@@ -36,16 +36,15 @@ MAX_INCREMENTS = 100000
 
 
 def implicit_step(s):
-    """(step s, rows every N steps): the larger of output.every and time.end / STEPS_PER_RUN,
-    rounded up to a multiple of output.every (the rows then fall on k every as the solver's,
-    where ccx has not cut the step back)."""
-    end = float(s["time"]["end"])
+    """The step, s: the larger of output.every and time.end / STEPS_PER_RUN, rounded up to a
+    multiple of output.every. ccx prints every increment, so the rows fall on k every as the
+    solver's where ccx has not cut the step back."""
+    target = float(s["time"]["end"]) / STEPS_PER_RUN
     every = s["output"].get("every")
-    target = end / STEPS_PER_RUN
     if not every:
-        return target, 1
+        return target
     every = float(every)
-    return every * max(1, math.ceil(target / every - 1e-9)), 1
+    return every * max(1, math.ceil(target / every - 1e-9))
 
 
 def penalty_slope(s, mesh):
@@ -165,12 +164,12 @@ def nose_blocks(s, nose):
     return out
 
 
-def write_contact(s, mesh, probes, path, end=None):
+def write_contact(s, mesh, probes, path):
     """Write the implicit contact deck to path. Returns the adapter's info: the ccx element,
     the substitutions, the step and the nose (for the history)."""
     element_type = "C3D8R" if s["mesh"]["element"] == "q4-1pt" else "C3D8"
-    end = float(s["time"]["end"]) if end is None else end
-    dt, every = implicit_step(s)
+    end = float(s["time"]["end"])
+    dt = implicit_step(s)
     lines = ["*HEADING", f"impact scene {s.get('title') or ''} (surface contact, adapters/calculix)"]
     slab, count = slab_blocks(s, mesh, element_type)
     lines += slab
@@ -191,7 +190,7 @@ def write_contact(s, mesh, probes, path, end=None):
     nlgeom = ", NLGEOM" if s["kinematics"] == "finite" else ""
     lines += [f"*STEP, INC={MAX_INCREMENTS}{nlgeom}", "*DYNAMIC",
               f"{deck.num(dt)}, {deck.num(end)}, {deck.num(dt * 1e-4)}, {deck.num(dt)}"]
-    lines += output_requests(probe_elements, every)
+    lines += output_requests(probe_elements)
     lines.append("*END STEP")
     with open(path, "w", encoding="ascii") as f:
         f.write("\n".join(lines) + "\n")
@@ -221,10 +220,10 @@ def supports(mesh, count, nose):
     return out
 
 
-def output_requests(probe_elements, every):
+def output_requests(probe_elements):
     """The nose's motion, the mid-span nodes, the probes, the energies and the contact force
-    every `every` increments."""
-    f = f"FREQUENCY={every}"
+    at every increment."""
+    f = "FREQUENCY=1"
     out = [f"*NODE PRINT, NSET=NREF, {f}", "U, V",
            f"*NODE PRINT, NSET=NMID, {f}", "U",
            f"*EL PRINT, ELSET=EALL, TOTALS=ONLY, {f}", "ELSE, ELKE"]
