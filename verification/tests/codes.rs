@@ -71,7 +71,7 @@ checks:
     title: the plate against itself at half the step, a scene the fake code refuses
     measure: {scene: plate, error: {column: mid_uy_m, norm: linf}}
     reference: {kind: invariant, value: 0.0, history: {scene: refused, column: mid_uy_m}, source: \"the same plate\"}
-    tolerance: {absolute: 0.05, reason: \"test: the step's effect on the deflection; the fake code's status is what is read\"}
+    tolerance: {absolute: 0.05, reason: \"the step's effect on impact's deflection, measured 3.8e-3 (about 13x); the fake code's status is what is read\"}
   - id: builtin
     title: impact's own kernel
     measure: {scene: law, metric: round_trip_max_rel}
