@@ -9,7 +9,10 @@ the outward normal n = d / |d|. Two enforcements:
 - kinematic (the default; predictor-corrector): at step 2 of t_n, from f_int(u_n), the
   contact-free positions at t_{n+1} are predicted and the forces lambda_i n_i (and their
   reaction on the impactor) that close the linearised gaps are solved in closed form on an
-  active set; the contact energy is minus the trapezoidal work of the contact forces.
+  active set; the contact energy is the kinetic energy its impulses took out (their work,
+  booked at t_n as section 7 reads the kinetic energy: wall.impulse_work).
+A node at or above the nose's centre (d_y >= 0: it has crossed the nose; the Rust solver stops
+there) takes no force, so that the contact never pulls.
 - penalty: f_i = k_i g n at u_n, k_i = s_p m_i lambda_i, energy k_i g^2 / 2.
 
 The impactor moves by central differences under the whole plate's force F = s P,
@@ -23,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .mesh import PlateMesh
+from .wall import impulse_work
 
 
 MAX_ACTIVE_SET_PASSES = 64
@@ -52,9 +56,9 @@ class SurfaceNose:
     energy: float = 0.0             # contact energy E_c at t_n (whole plate)
     n_contact: float = 0.0          # nodes in contact (whole plate)
     half_width: float = 0.0         # largest |d_x| of a node in contact
-    # kinematic: the work of the contact forces W_n and the state at t_{n-1} it needs
+    # kinematic: the work of the contact impulses before step n, and F_n-1 for the impulse
     work: float = 0.0
-    prev: tuple | None = None       # (u_c,n-1 (n_c, 2), f_n-1, F_n-1, delta_S,n-1)
+    F_prev: float | None = None
     passes: int = 0                 # active-set passes of the last solve
 
     @classmethod
@@ -124,7 +128,7 @@ class SurfaceNose:
         """Penalty: the nose's forces at displacement u and impactor displacement dS: returns
         (f (n_c, 2), F whole plate, E_c whole plate, nodes in contact (whole plate), half-width)."""
         dx, dy, dist, g = self.gap(self.candidate_u(u), dS)
-        on = (g > 0.0) & (dist > 0.0)
+        on = (g > 0.0) & (dist > 0.0) & (dy < 0.0)
         f = np.zeros((self.nodes.size, 2))
         scale = np.where(on, self.k * g / np.where(on, dist, 1.0), 0.0)
         f[:, 0] = scale * dx
@@ -152,7 +156,7 @@ class SurfaceNose:
         a = ny_
         c = dt * hs
         r = self.s / self.m_s
-        usable = ok & (w > 0.0)
+        usable = ok & (w > 0.0) & (ny_ < 0.0)
         wsafe = np.where(usable, w, 1.0)
         active = usable & (g > 0.0)
         self.passes = 0
@@ -176,24 +180,29 @@ class SurfaceNose:
     def solve(self, u: np.ndarray, v_half: np.ndarray, f_int: np.ndarray, dt: float,
               first: bool, h: float | None = None, dt_prev: float | None = None) -> float:
         """Section 6 step 2 of t_n (kinematic): the nose's forces f_n, F_n from f_int(u_n), then
-        the contact work W_n (energy -W_n). Returns the impulse increment (F_n-1 + F_n) dt / 2
-        (0 at n = 0; section 6b: on the previous step's length dt_prev)."""
-        uc = self.candidate_u(u)
-        lam, nrm, dx = self.kinematic_forces(uc, self.candidate_u(v_half),
-                                             self.candidate_u(f_int), dt, first, h)
+        the work of their impulses h f_n on the candidates and -h F_n on the impactor (energy:
+        minus the works of the steps before and the share of this one at t_n). Returns the
+        impulse increment (F_n-1 + F_n) dt / 2 (0 at n = 0; section 6b: on the previous
+        step's length dt_prev)."""
+        uc, vc, fc = self.candidate_u(u), self.candidate_u(v_half), self.candidate_u(f_int)
+        lam, nrm, dx = self.kinematic_forces(uc, vc, fc, dt, first, h)
         self.f = lam[:, None] * nrm
         self.F = self.s * float(np.sum(lam * (-nrm[:, 1])))
         on = lam > 0.0
         self.n_contact = float(np.sum(self.weight[on]))
         self.half_width = float(np.max(np.abs(dx[on]))) if on.any() else 0.0
+        hs = (0.5 * dt if first else dt) if h is None else h
+        after = vc - hs * fc * self.im + hs * self.f * self.im
+        W_plate, at_plate = impulse_work(self.s * hs * self.f, vc, after, first)
+        before = self.v0 if first else self.v_half
+        W_body, at_body = impulse_work(np.array([-hs * self.F]), before,
+                                       before - hs * self.F / self.m_s, first)
+        self.energy = -(self.work + at_plate + at_body)
+        self.work += W_plate + W_body
         di = 0.0
-        if self.prev is not None:
-            u0, f0, F0, d0 = self.prev
-            self.work += (self.s * float(np.sum(0.5 * (f0 + self.f) * (uc - u0)))
-                          - 0.5 * (F0 + self.F) * (self.dS - d0))
-            di = 0.5 * (F0 + self.F) * (dt if dt_prev is None else dt_prev)
-        self.energy = -self.work
-        self.prev = (uc, self.f.copy(), self.F, self.dS)
+        if self.F_prev is not None:
+            di = 0.5 * (self.F_prev + self.F) * (dt if dt_prev is None else dt_prev)
+        self.F_prev = self.F
         return di
 
     # ------------------------------------------------------------------ both

@@ -1,6 +1,6 @@
 """The rigid, frictionless planar wall y = 0 (ALGORITHM.md section 5c), written from that text:
 kinematic enforcement on every node with a free u_y, the wall's dissipation from the impulse
-times the mean of the velocities before and after, the bearing force (the body's own force on
+times the mean of the velocities before and after (booked at t_n as the kinetic energy is read), the bearing force (the body's own force on
 the held nodes), the foot radius, the contact radius and the bar's length.
 SI units: forces N and energies J of the whole body (the symmetry factor s applied)."""
 from __future__ import annotations
@@ -8,6 +8,17 @@ from __future__ import annotations
 import numpy as np
 
 TOUCH = 1e-9     # a node lower than TOUCH h touches the wall (h the body's thickness)
+
+
+def impulse_work(impulse: np.ndarray, before: np.ndarray, after, first: bool
+                 ) -> tuple[float, float]:
+    """The work of impulses (N s, per dof) that take half-step velocities from `before` to
+    `after` (m/s): W_n = sum J (before + after) / 2 (the change of the half-step kinetic
+    energy), and the share of it in section 7's kinetic energy at t_n, read with the mean
+    velocity v_n = (before + after) / 2: sum (J / 2) (before + v_n) / 2 = sum J (3 before +
+    after) / 8 (0 at t_0, whose kinetic energy is the initial one)."""
+    W = float(np.sum(impulse * 0.5 * (before + after)))
+    return W, 0.0 if first else float(np.sum(impulse * (3.0 * before + after) / 8.0))
 
 
 class RigidWall:
@@ -23,7 +34,7 @@ class RigidWall:
         self.R = np.zeros(self.X.size)          # the wall's force on each u_y at t_n, N
         self.done = 0.0                         # sum_{k<n} W_k, J
         self.W = 0.0                            # W_n, J
-        self.share = 0.0                        # c_n: 0 at n = 0, then 1/2
+        self.W_at_t_n = 0.0                     # the share of W_n in the kinetic energy at t_n, J
         self.touched = np.zeros(self.X.size, dtype=bool)
         self.bearing = 0.0                      # B_n = s sum of f_int on the held nodes, N
         self.max_bearing = 0.0
@@ -42,13 +53,12 @@ class RigidWall:
         (section 6b: the mean of the two steps)."""
         h = (0.5 * dt if first else dt) if h is None else h
         self.done += self.W
-        self.share = 0.0 if first else 0.5
         y = self.Y + u[1::2]
         v_free = v_half[1::2] - h * f_int[1::2] * self.im
         hit = self.free & (y + dt * v_free < 0.0)
         v_wall = -y / dt
         self.R = np.where(hit, self.m * (v_wall - v_free) / h, 0.0)
-        self.W = self.s * float(np.sum(h * self.R * 0.5 * (v_half[1::2] + v_wall)))
+        self.W, self.W_at_t_n = impulse_work(self.s * h * self.R, v_half[1::2], v_wall, first)
         self.bearing = self.s * float(np.sum(np.where(hit, f_int[1::2], 0.0)))
         self.max_bearing = max(self.max_bearing, self.bearing)
         return self.s * float(np.sum(self.R))
@@ -59,7 +69,7 @@ class RigidWall:
     @property
     def energy(self) -> float:
         """The wall's dissipation at t_n, J."""
-        return -(self.done + self.share * self.W)
+        return -(self.done + self.W_at_t_n)
 
     def reading(self, u: np.ndarray) -> tuple[float, float, float, float]:
         """The history's wall columns at u_n: foot_radius_m (the nodes that have touched the

@@ -4,7 +4,7 @@
 //!   is the sum of its impulses, so `impulse = M (v0 + v_rebound)` to round-off; the bar's
 //!   length after it left the wall is its own, not its height above the wall;
 //! - the Taylor bar scene (`verification/scenes/taylor-bar.yaml`, finite deformation, 80 us) runs, its
-//!   balance closes, it shortens and its foot spreads, and its bits do not depend on the thread
+//!   balance closes at every landing (the wall's dissipation booked at `t_n`), it shortens and its foot spreads, and its bits do not depend on the thread
 //!   count;
 //! - the scenes the wall cannot run are refused with the file, line, column, field and value.
 
@@ -75,8 +75,14 @@ fn the_taylor_bar_scene_runs_shortens_and_spreads_on_any_thread_count() {
         .zip(&two.history.values)
         .all(|(a, b)| a.to_bits() == b.to_bits()));
     let wall = one.summary.wall.as_ref().unwrap();
-    // Measured 1.4e-4 (finite deformation, q4-sri, 80 us).
-    assert!(one.summary.max_energy_balance_error < 5e-3);
+    // Measured 1.0e-7 (finite deformation, q4-sri, 80 us), the landings' loss booked at
+    // t_n as the kinetic energy is read (ALGORITHM.md 7); booking half of a landing step's
+    // work at t_n left a one-step spike at each landing, 1.4e-4 at most. Bound 10x measured.
+    assert!(
+        one.summary.max_energy_balance_error < 1e-6,
+        "{}",
+        one.summary.max_energy_balance_error
+    );
     assert!(
         wall.final_length < 0.0324 && wall.foot_radius > 0.0032,
         "{wall:?}"

@@ -615,6 +615,9 @@ fn print_summary(s: &impact_solver::Summary) {
         "{step}, {} steps, {} elements, {:.3} s wall ({:.1} ns per element-step)",
         s.n_steps, s.n_elements, s.wall_time, s.ns_per_element_step
     );
+    for warning in &s.result_warnings {
+        println!("warning: {warning}");
+    }
 }
 
 /// A plate's answers: the impulse, the peak force, the deflection, the contact.

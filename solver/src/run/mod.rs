@@ -16,6 +16,7 @@ use crate::time_loop::model::{self, Kernel, UseModel};
 use crate::time_loop::observer::Observer;
 use crate::time_loop::plate_model::PlateModel;
 
+pub mod result_warnings;
 pub mod summary;
 
 use summary::{Summary, Timing};

@@ -140,6 +140,10 @@ pub struct Summary {
     /// Surface coupling: the most nodes in contact at once (whole plate).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_nodes_in_contact: Option<f64>,
+    /// Surface coupling: the largest penetration `g` of a top-surface node into the nose at
+    /// any `t_n` (current positions; ALGORITHM.md 5b), m.
+    #[serde(rename = "max_penetration_m", skip_serializing_if = "Option::is_none")]
+    pub max_penetration: Option<f64>,
     /// Rate-dependent plasticity: the largest equivalent plastic strain rate over all steps,
     /// per probe, 1/s.
     #[serde(
@@ -158,6 +162,10 @@ pub struct Summary {
     /// Absent when there are none.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// What the run found doubtful in its own results
+    /// ([`crate::run::result_warnings`]): absent when there is nothing.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub result_warnings: Vec<String>,
     /// The rigid wall's results (`load: {wall}` only, so that other summaries keep their bits).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub wall: Option<WallSummary>,
@@ -302,6 +310,7 @@ impl Summary {
             contact_step_factor: t.max_patch.map(|_| t.dt_critical / t.dt_plate),
             max_contact_half_width: t.max_patch.map(|p| p[0]),
             max_nodes_in_contact: t.max_patch.map(|p| p[1]),
+            max_penetration: t.max_penetration,
             max_plastic_strain_rate: t.max_plastic_strain_rate.iter().cloned().collect(),
             max_temperature: t.max_temperature,
             heat: scene
@@ -309,6 +318,7 @@ impl Summary {
                 .and_then(|r| r.thermal())
                 .map(|th| th.taylor_quinney * t.final_energy.plastic_work),
             warnings: scene.warnings.iter().map(ToString::to_string).collect(),
+            result_warnings: crate::run::result_warnings::result_warnings(scene, t),
             wall: WallSummary::new(scene, t),
         }
     }

@@ -133,6 +133,9 @@ pub struct RunTotals {
     pub max_plastic_strain_rate: Vec<(String, f64)>,
     /// Highest temperature over the plate's points at the end (heating only rises), K.
     pub max_temperature: Option<f64>,
+    /// Surface coupling: the largest penetration of a top-surface node into the nose at any
+    /// `t_n`, m.
+    pub max_penetration: Option<f64>,
     pub max_balance_error: f64,
     /// The first step, s.
     pub dt: f64,
@@ -221,6 +224,7 @@ impl<'s> Recorder<'s> {
                 None => Vec::new(),
             },
             max_temperature: None,
+            max_penetration: None,
             max_balance_error: 0.0,
             dt,
             dt_critical,

@@ -75,6 +75,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
         // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
         let energies = stepper.half_step(n, applied, element_energy);
         let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
+        stepper.check_nose(n, t)?;
         if geometry_check_due(n, stop.is_some()) {
             stepper.check_inversion(n, t)?;
             stepper.check_deformed_step(n, t, dt_plate)?;
@@ -90,6 +91,7 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
             totals.wall = wall;
             totals.dt_range = stepper.every_step.as_ref().map(|e| e.range);
             totals.max_temperature = stepper.model.max_temperature();
+            totals.max_penetration = stepper.surface.as_ref().map(|c| c.max_penetration);
             return Ok(totals);
         }
         // u_{n+1}, then 5: the contact force at n + 1 and the impactor.

@@ -333,6 +333,12 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             BLOW_UP_BALANCE_ERROR
         };
         if !(energies.total().is_finite() && self.initial_energy.total().is_finite()) {
+            // An element turned inside out makes the finite kinematics' arithmetic fail at
+            // once, before the periodic geometry check: name it first, unless an input beyond
+            // any physical value is the cause (the overflow's message names it).
+            if crate::input::estimate::measures::extreme_inputs(self.scene).is_empty() {
+                self.check_inversion(n, t)?;
+            }
             return Err(Error::Run {
                 step: n,
                 time_s: t,
@@ -351,6 +357,36 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             });
         }
         Ok((imbalance, balance_error))
+    }
+
+    /// Surface coupling: records the penetration at `t_n` and stops the run (naming the node,
+    /// its depth and the likeliest cause) once the plate's top surface has crossed the nose.
+    pub(super) fn check_nose(&mut self, n: u64, t: f64) -> Result<()> {
+        let Some(surface) = &mut self.surface else {
+            return Ok(());
+        };
+        let Some((node, e)) = surface.observe(&self.u) else {
+            return Ok(());
+        };
+        let r = surface.nose.radius;
+        let speed = surface.body.half_step_velocity;
+        let per_step = speed.abs() * self.dt;
+        let cause = if per_step > 0.5 * r {
+            format!("the nose moves {per_step:.3e} m in one step at {speed:.4e} m/s, {:.2} of its radius: a contact is found only where a node is inside the nose, so the step (time.dt) must move the nose well under its radius (lower time.dt.cfl or use a larger nose_radius)", per_step / r)
+        } else {
+            match self.scene.surface_impactor().map(|i| &i.contact) {
+                Some(c) if c.enforcement == crate::input::scene::Enforcement::Penalty => format!("the penalty (penalty_scale {}) is too soft to stop the nose within its radius: raise penalty_scale or use enforcement: kinematic", crate::input::error::shown(c.penalty_scale)),
+                _ => "the nose has sunk more than its radius into the plate, where the model (a rigid cylinder without the impactor's body above it) no longer holds: use a larger nose_radius".to_string(),
+            }
+        };
+        Err(Error::Run {
+            step: n,
+            time_s: t,
+            what: format!(
+                "the plate's top surface has crossed the nose: the top node at reference x = {:.4e} m is {e:.4e} m above the nose's lowest point, at or above its centre (nose_radius {r:.4e} m); {cause}",
+                node.x
+            ),
+        })
     }
 
     /// An error naming the first inverted element (checked every

@@ -6,7 +6,8 @@
 
 use crate::input::scene::{Enforcement, SurfaceImpactor};
 use crate::mesh::PlateMesh;
-use crate::physics::contacts::nose_contact::{KinematicScratch, NoseForces, NoseSurface};
+use crate::physics::contacts::impulse_ledger::ImpulseLedger;
+use crate::physics::contacts::nose_contact::{KinematicScratch, NoseForces, NoseSurface, SurfaceNode};
 use crate::physics::elements::element::{element_max_eigenvalue, Formulation};
 use crate::physics::impactor::CentralDifferenceImpactor;
 use crate::physics::materials::material::ConstitutiveModel;
@@ -26,14 +27,11 @@ pub(crate) struct SurfaceImpact {
     predicted: Vec<[f64; 2]>,
     inverse_mass: Vec<[f64; 2]>,
     scratch: KinematicScratch,
-    /// Kinematic enforcement: the work of the contact forces on the plate and the impactor up to
-    /// `t_n` (trapezoidal, whole plate), J, with the forces (modelled part, N), the candidates' displacements (m),
-    /// the impactor's force (N) and displacement (m) at the last step it was summed to.
-    work: f64,
-    last_forces: Vec<[f64; 2]>,
-    last_u: Vec<[f64; 2]>,
-    last_force: f64,
-    last_delta: f64,
+    /// Kinematic enforcement: the works of the contact's impulses on the plate and the
+    /// impactor (whole plate).
+    work: ImpulseLedger,
+    /// The largest penetration of a candidate at any `t_n` so far, m.
+    pub max_penetration: f64,
 }
 
 impl SurfaceImpact {
@@ -75,11 +73,8 @@ impl SurfaceImpact {
             predicted: vec![[0.0; 2]; k],
             inverse_mass,
             scratch: KinematicScratch::default(),
-            work: 0.0,
-            last_forces: vec![[0.0; 2]; k],
-            last_u: vec![[0.0; 2]; k],
-            last_force: 0.0,
-            last_delta: 0.0,
+            work: ImpulseLedger::default(),
+            max_penetration: 0.0,
             nose,
         }
     }
@@ -108,19 +103,19 @@ impl SurfaceImpact {
         self.s * self.forces.total
     }
 
-    /// The contact energy at `t_n`, whole plate, J: the penalty's stored energy, or what the
-    /// kinematic forces took out of the plate and the impactor (minus their work).
+    /// The contact energy at `t_n`, whole plate, J: the penalty's stored energy, or the kinetic
+    /// energy the kinematic impulses took out of the plate and the impactor.
     pub fn energy(&self) -> f64 {
         match self.enforcement {
             Enforcement::Penalty => self.s * self.forces.energy,
-            Enforcement::Kinematic => -self.work,
+            Enforcement::Kinematic => self.work.dissipated(),
         }
     }
 
     /// Step 2 at `t_n` (`h` the velocity step, s; `u`, `v`, `f_int` the plate's `u_n`,
     /// `v_{n-1/2}` and `f_int - f_ext` without the contact): the kinematic enforcement's forces
-    /// at `t_n` from the contact-free prediction, and their work up to `t_n` (the penalty's
-    /// forces at `t_n` came with step 5). Returns `F_n` (whole plate, N).
+    /// at `t_n` from the contact-free prediction, and the works of their impulses (the
+    /// penalty's forces at `t_n` came with step 5). Returns `F_n` (whole plate, N).
     pub fn solve(&mut self, dt: f64, h: f64, u: &[f64], v: &[f64], f_int: &[f64]) -> f64 {
         if self.enforcement == Enforcement::Kinematic {
             for (k, n) in self.nose.nodes.iter().enumerate() {
@@ -139,28 +134,29 @@ impl SurfaceImpact {
                 &mut self.scratch,
                 &mut self.forces,
             );
-            self.add_work(u);
+            self.book_impulses(h, v, f_int);
         }
         self.force()
     }
 
-    /// The trapezoid of the contact forces' work from the last summed step to `t_n`.
-    fn add_work(&mut self, u: &[f64]) {
-        let mut work = 0.0;
+    /// The works of step `n`'s contact impulses `h f` on the candidates (their `v_{n-1/2}` in
+    /// `v`, `f_int - f_ext` without the contact in `f_int`) and `-h F_n` on the impactor (its
+    /// velocity positive down).
+    fn book_impulses(&mut self, h: f64, v: &[f64], f_int: &[f64]) {
+        self.work.open();
         for (k, n) in self.nose.nodes.iter().enumerate() {
-            let (f0, f1) = (self.last_forces[k], self.forces.on_node[k]);
-            let un = [u[2 * n.node], u[2 * n.node + 1]];
             for d in 0..2 {
-                work += 0.5 * (f0[d] + f1[d]) * (un[d] - self.last_u[k][d]);
+                let (dof, im) = (2 * n.node + d, self.inverse_mass[k][d]);
+                let impulse = h * self.forces.on_node[k][d];
+                let after = v[dof] - h * f_int[dof] * im + impulse * im;
+                self.work.book(self.s, impulse, v[dof], after);
             }
-            self.last_u[k] = un;
         }
-        self.last_forces.copy_from_slice(&self.forces.on_node);
-        let force = self.force();
-        let delta = self.body.displacement;
-        // The impactor is pushed up (against delta, positive down).
-        self.work += self.s * work - 0.5 * (self.last_force + force) * (delta - self.last_delta);
-        (self.last_force, self.last_delta) = (force, delta);
+        let before = self.body.half_step_velocity;
+        let impulse = -h * self.force();
+        self.work
+            .book(1.0, impulse, before, before + impulse / self.body.mass);
+        self.work.close();
     }
 
     /// Step 5: the impactor from `t_n` to `t_{n+1}` under `F_n`; under the penalty, the nose's
@@ -173,6 +169,15 @@ impl SurfaceImpact {
                 .evaluate(u, self.body.displacement, &mut self.forces);
         }
         self.force()
+    }
+
+    /// The penetrations at `t_n` (`u` the plate's `u_n`, m): records the deepest, and returns
+    /// the candidate that has crossed the nose (at or above its centre's level) with its depth
+    /// below the nose's lowest point (m), if one has.
+    pub fn observe(&mut self, u: &[f64]) -> Option<(SurfaceNode, f64)> {
+        let depth = self.nose.depth(u, self.body.displacement);
+        self.max_penetration = self.max_penetration.max(depth.deepest);
+        depth.crossed.map(|(i, e)| (self.nose.nodes[i], e))
     }
 
     /// Indentation `delta_S + u_y(top mid-span)`, impactor displacement (m) and velocity (m/s)

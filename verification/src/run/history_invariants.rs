@@ -10,7 +10,8 @@
 //! energy (the nodal law, the surface coupling, the wall), its sign:
 //! `contact-energy-sign`, the column never below zero beyond round-off (a contact takes energy
 //! or stores it; one that gives it is a wrong gap or a pulling force). Per wall run, the
-//! wall's keys against their columns (`wall_invariants.rs`). Per run with
+//! wall's keys against their columns (`wall_invariants.rs`). Per kinematic surface run, its
+//! deepest penetration against round-off (`surface_invariants.rs`). Per run with
 //! contact (an impactor and at least one contact interval), three checks:
 //! - `contact-state`: the rows whose force is positive are exactly the rows inside the
 //!   summary's `contact_intervals_s` (`[first t_n with F > 0, first later t_n with F = 0)`;
@@ -32,7 +33,7 @@ use crate::definition::check::CheckResult;
 use crate::definition::run_data::RunData;
 
 use super::invariant_row::row;
-use super::wall_invariants;
+use super::{surface_invariants, wall_invariants};
 
 pub const SUITE: &str = "invariants";
 pub const CASE: &str = "history-summary";
@@ -200,9 +201,9 @@ pub const TITLE: &str =
     "Every impact and wall run of the matrix - the summary's contact and wall keys against its own history";
 pub const REQUIREMENT: (&str, &str) = (
     "REQ-INV-HISTORY-SUMMARY",
-    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the contact energy shall never fall below zero beyond round-off, for every run with contact energy; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run.",
+    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the contact energy shall never fall below zero beyond round-off, for every run with contact energy; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run; no node shall stay in the nose beyond round-off, for every kinematic surface run.",
 );
-pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every run with contact energy: the contact_energy_J column never below zero beyond round-off (a contact that gives energy: a gap that ignores the nodes' sideways motion, a pulling force). Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
+pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every kinematic surface run (verification/src/run/surface_invariants.rs): max_penetration_m within round-off of the deflection. Every run with contact energy: the contact_energy_J column never below zero beyond round-off (a contact that gives energy: a gap that ignores the nodes' sideways motion, a pulling force). Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
 
 /// The case's checks from the matrix's impact runs (`(suite/case/scene, run)`, each run
 /// once), kept when `suite/case/check` contains `filter`.
@@ -223,6 +224,9 @@ pub fn case_checks<'a>(
         }
         if let Some(error) = new_physics_balance(run) {
             all.push(balance_check(&name, error));
+        }
+        if let Some(depth) = surface_invariants::kinematic_penetration(run) {
+            all.push(surface_invariants::penetration_check(&name, depth));
         }
     }
     all.retain(|k| {

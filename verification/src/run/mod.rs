@@ -20,4 +20,5 @@ pub mod plan;
 pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
+pub mod surface_invariants;
 pub mod wall_invariants;

@@ -136,7 +136,9 @@ impl NoseSurface {
         out.half_width = 0.0;
         for n in &self.nodes {
             let (g, [dx, dy], distance) = self.gap(n, [u[2 * n.node], u[2 * n.node + 1]], delta);
-            if g <= 0.0 || distance == 0.0 {
+            // A node at or above the centre's level has crossed the nose (the run stops on it,
+            // `deepest`): its radial normal would pull it up, so it takes nothing.
+            if g <= 0.0 || distance == 0.0 || dy >= 0.0 {
                 out.on_node.push([0.0, 0.0]);
                 continue;
             }
@@ -148,6 +150,32 @@ impl NoseSurface {
             out.in_contact += 1;
             out.half_width = out.half_width.max(dx.abs());
         }
+    }
+}
+
+/// How deep the plate's top surface is in the nose at one instant.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Depth {
+    /// The largest penetration `g` of a candidate, m (0 when none penetrates).
+    pub deepest: f64,
+    /// The first candidate (its index in [`NoseSurface::nodes`]) at or above the nose's
+    /// centre (`e >= R`), with its depth `e` below the nose's lowest point, m: the plate's
+    /// surface has crossed the nose (the cylinder's contact no longer holds it).
+    pub crossed: Option<(usize, f64)>,
+}
+
+impl NoseSurface {
+    /// The penetrations at displacement `u` (m) with the impactor moved down by `delta` (m).
+    pub fn depth(&self, u: &[f64], delta: f64) -> Depth {
+        let mut depth = Depth::default();
+        for (i, n) in self.nodes.iter().enumerate() {
+            let (g, [_, dy], _) = self.gap(n, [u[2 * n.node], u[2 * n.node + 1]], delta);
+            depth.deepest = depth.deepest.max(g);
+            if dy >= 0.0 && depth.crossed.is_none() {
+                depth.crossed = Some((i, dy + self.radius));
+            }
+        }
+        depth
     }
 }
 
@@ -259,7 +287,13 @@ impl NoseSurface {
                 [0.0, -1.0]
             };
             let [im_x, im_y] = inverse_mass[i];
-            let mobility = im_x * normal[0] * normal[0] + im_y * normal[1] * normal[1];
+            // A node at or above the centre's level (a crossing, `deepest`) is not held: its
+            // normal would pull it up.
+            let mobility = if normal[1] < 0.0 {
+                im_x * normal[0] * normal[0] + im_y * normal[1] * normal[1]
+            } else {
+                0.0
+            };
             scratch.g.push(g);
             scratch.normal.push(normal);
             scratch.mobility.push(mobility);
@@ -317,6 +351,26 @@ mod tests {
         assert!((out.total - (10.0 * 0.3 + 20.0 * g * 0.7 / d)).abs() < 1e-12);
         assert!((out.half_width - 0.6).abs() < 1e-15);
         assert!((out.energy - (5.0 * 0.09 + 10.0 * g * g)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_depth_is_the_deepest_penetration_and_a_node_past_the_centre_has_crossed() {
+        // delta = 0.3: node 0 is 0.3 deep, node 1 0.07805 (above): the deepest is node 0's.
+        let d = nose().depth(&[0.0; 4], 0.3);
+        assert!((d.deepest - 0.3).abs() < 1e-15, "{d:?}");
+        assert_eq!(d.crossed, None);
+        // Nobody touches: the deepest is 0, not a negative gap.
+        assert_eq!(nose().depth(&[0.0, -0.5, 0.0, -0.5], 0.1).deepest, 0.0);
+        // delta = 1.2: node 0 is 1.2 below the nose's lowest point, above its centre
+        // (R = 1): crossed, with its depth; node 1 (e = 1.2 too) is not the first.
+        let d = nose().depth(&[0.0; 4], 1.2);
+        let (node, e) = d.crossed.expect("crossed");
+        assert!(node == 0 && (e - 1.2).abs() < 1e-15, "{d:?}");
+        // A node past the centre takes no force: its radial normal would pull it up.
+        let mut out = NoseForces::default();
+        nose().evaluate(&[0.0; 4], 1.2, &mut out);
+        assert!(out.on_node.iter().all(|f| f[1] <= 0.0), "{:?}", out.on_node);
+        assert!(out.total >= 0.0);
     }
 
     #[test]
