@@ -12,10 +12,17 @@ runs). Writes
 ``uq.md`` (embedded by ``impact report`` as its uncertainty section), its SVG figures and
 ``uq.json`` (the budget rows and the converged statistics). ``--dask N`` runs the sweeps on a
 Dask LocalCluster of N single-threaded workers instead of the local pool.
+
+The files are written into ``.OUT.partial-PID`` beside ``--out`` and moved in at the end,
+replacing the page, data and figures of an earlier run (``impact simulate`` stages its output
+alike). Exit status: 0 written; 130 on Ctrl-C (within a second; one line; ``--out`` left as
+it was); 2 when a declaration is refused (its message, ``file:line:col: ...``, before any
+run); 1 when runs of a study failed (their rows and messages).
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
 from pathlib import Path
@@ -93,6 +100,65 @@ def couplings_section(summary: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+# What this script writes into --out, and replaces there: the page, its data, its figures.
+OWNED = ("uq.md", "uq.json", "study*-*.svg")
+INTRO = ("# Uncertainty: V&V 20 budgets, Sobol' indices, rigid-plastic bounds\n\n"
+         "Written by `scripts/uq-study.py` with `impact.uq`. The paper's numbers are "
+         "computed results, not measurements: each row is a code-to-literature comparison. "
+         "Every Table 1 number and all 14 Table 2 impulses entered the reconstruction's "
+         "objective (reference-data/paper/reconstruction/report.md section 2): they are "
+         "**calibration**, none is held out, so |E| <= 2 u_val there shows the fit is as good "
+         "as the uncertainties, not validation (held-out residuals of other fits: the "
+         "reconstruction's evidence page, section 1). The surface-contact rows use the plate "
+         "fitted under the point force.\n")
+
+
+def write_page(studies: list[str], folder: Path, client, args) -> None:
+    """Runs the studies and writes uq.md, uq.json and the figures into ``folder``."""
+    import impact
+    from impact._uq_page import budget_rows, dominant_inputs, study_section
+
+    page = [INTRO]
+    summary = {}
+    for i, path in enumerate(studies):
+        rel = str(Path(path))
+        print(f"uq: {rel}: running", flush=True)
+        r = impact.uq(ROOT / path if not Path(path).is_absolute() else path,
+                      client=client, jobs=None if client else args.jobs)
+        page.append(study_section(r, rel, folder, f"study{i + 1}"))
+        summary[rel] = {"converged_at": r.converged_at, "runs": r.final.runs,
+                        "wall_time_s": r.wall_time_s, "budget": budget_rows(r, rel),
+                        "dominant": dominant_inputs(r)}
+        print(f"uq: {rel}: {r.final.runs} runs, converged at N = {r.converged_at}, "
+              f"{r.wall_time_s:.0f} s", flush=True)
+    if not args.ci:
+        page.append(couplings_section(summary))
+        page.append(rigid_plastic_section(args.jobs))
+    (folder / "uq.md").write_text("\n".join(page))
+    (folder / "uq.json").write_text(json.dumps(summary, indent=1, default=str) + "\n")
+
+
+@contextlib.contextmanager
+def dask_client(workers: int):
+    """A client of a Dask LocalCluster of ``workers`` single-threaded processes (0: None, the
+    local pool), both closed at the end, also on Ctrl-C. Ctrl-C is this process's to handle:
+    the workers (in its process group, so a terminal's Ctrl-C reaches them too) ignore it,
+    their runs under way stop with their cancelled tasks, and their warnings about those are
+    not shown."""
+    if not workers:
+        yield None
+        return
+    import logging
+    import signal
+
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+        client.run(lambda: signal.signal(signal.SIGINT, signal.SIG_IGN) and None)
+        yield client
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("studies", nargs="*")
@@ -102,47 +168,22 @@ def main() -> int:
     ap.add_argument("--dask", type=int, default=0, help="run on a Dask LocalCluster of N workers")
     args = ap.parse_args()
     import impact
-    from impact._uq_page import budget_rows, dominant_inputs, study_section
+    from impact._staging import staged
 
     studies = args.studies or (CI if args.ci else MAIN)
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    client = cluster = None
-    if args.dask:
-        from dask.distributed import Client, LocalCluster
-
-        cluster = LocalCluster(n_workers=args.dask, threads_per_worker=1, processes=True)
-        client = Client(cluster)
-    page = ["# Uncertainty: V&V 20 budgets, Sobol' indices, rigid-plastic bounds\n",
-            "Written by `scripts/uq-study.py` with `impact.uq`. The paper's numbers are "
-            "computed results, not measurements: each row is a code-to-literature comparison. "
-            "Every Table 1 number and all 14 Table 2 impulses entered the reconstruction's "
-            "objective (reference-data/paper/reconstruction/report.md section 2): they are "
-            "**calibration**, none is held out, so |E| <= 2 u_val there shows the fit is as good "
-            "as the uncertainties, not validation (held-out residuals of other fits: the "
-            "reconstruction's evidence page, section 1). The surface-contact rows use the plate "
-            "fitted under the point force.\n"]
-    summary = {}
     try:
-        for i, path in enumerate(studies):
-            r = impact.uq(ROOT / path if not Path(path).is_absolute() else path,
-                          client=client, jobs=None if client else args.jobs)
-            rel = str(Path(path))
-            page.append(study_section(r, rel, out, f"study{i + 1}"))
-            summary[rel] = {"converged_at": r.converged_at, "runs": r.final.runs,
-                            "wall_time_s": r.wall_time_s, "budget": budget_rows(r, rel),
-                            "dominant": dominant_inputs(r)}
-            print(f"uq: {rel}: {r.final.runs} runs, converged at N = {r.converged_at}, "
-                  f"{r.wall_time_s:.0f} s", flush=True)
-    finally:
-        if client is not None:
-            client.close()
-            cluster.close()
-    if not args.ci:
-        page.append(couplings_section(summary))
-        page.append(rigid_plastic_section(args.jobs))
-    (out / "uq.md").write_text("\n".join(page))
-    (out / "uq.json").write_text(json.dumps(summary, indent=1, default=str) + "\n")
+        with staged(out, OWNED) as folder, dask_client(args.dask) as client:
+            write_page(studies, folder, client, args)
+    except KeyboardInterrupt:
+        print(f"uq: interrupted (Ctrl-C): nothing written, {out} is as it was", file=sys.stderr)
+        return 130
+    except impact.SceneError as e:
+        print(f"uq: {e}", file=sys.stderr)
+        return 2
+    except impact.StudyRunError as e:
+        print(f"uq: {e}", file=sys.stderr)
+        return 1
     print(f"uq: wrote {out / 'uq.md'}")
     return 0
 

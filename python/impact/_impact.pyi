@@ -1,7 +1,7 @@
 """Stub of the native module `impact._impact` (Rust, pyo3). Use the documented functions of
 `impact` instead; these are their building blocks."""
 
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 import numpy.typing as npt
@@ -20,6 +20,7 @@ def simulate(
     threads: int | None = None,
     overrides: str | None = None,
     warn: Callable[[str], None] | None = None,
+    stop: Any | None = None,
 ) -> tuple[str, list[str], list[npt.NDArray[np.float64]]]: ...
 def verify(
     selectors: list[str],
@@ -35,3 +36,5 @@ def gci(values: list[float], ratio: float, formal: float) -> tuple[float, float,
 def rigid_plastic(
     text: str, source: str, plastic_work: float, overrides: str | None = ...
 ) -> str | None: ...
+def refusal(text: str, source: str, overrides: str | None = None) -> str | None: ...
+def summary_keys(text: str, source: str, overrides: str | None = None) -> list[str]: ...

@@ -91,7 +91,9 @@ def simulate(
             elements); every other run uses one thread whatever this says. Results are
             bit-identical for every thread count. None: one per core (as the CLI).
         overrides: values set at dotted scene keys before validation, with the rules of a
-            scene file, e.g. ``{"material.plasticity.yield_stress": 2.0e8}`` (Pa).
+            scene file, e.g. ``{"material.plasticity.yield_stress": 2.0e8}`` (Pa). A key
+            through a word that is short for a map sets that map
+            (``load.impactor.contact.surface.enforcement`` on ``contact: surface``).
 
     The GIL is released while the solver runs, so threads of a pool run in parallel.
 

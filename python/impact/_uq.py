@@ -16,6 +16,13 @@ means on the same points): ``u_input`` is the converged standard deviation times
 bootstrap intervals); the mean and standard deviation from the ``2 N`` rows of ``A`` and ``B``
 (the inputs' joint distribution), with percentile bootstrap intervals. The numerical
 uncertainty comes from the declared mesh levels by the project's GCI rule (``impact._impact.gci``).
+
+The whole declaration is checked before the first run: the native reader's rules (with
+``file:line:col``: the seed's range, each input's key and the values its distribution declares
+on every scene, each output a number of every scene's summary), then here every input's
+smallest and largest draw of the designs to be run, on every scene as the runs set it (an
+unbounded distribution can draw what a scene refuses: a normal Poisson ratio beyond 0.5).
+Ctrl-C stops a study within a second (see :func:`impact.sweep`).
 """
 from __future__ import annotations
 
@@ -119,10 +126,17 @@ class UQResult:
 
 
 def output_value(row: Any, key: str) -> float:
-    """A summary value by its dotted key (``max_von_mises_Pa.A``) from a row or a dict."""
+    """A summary value by its dotted key (``max_von_mises_Pa.A``) from a row or a dict; a
+    run whose summary holds no number there (a wall's release time while the body is still on
+    it) raises StudyRunError naming the key and what it holds."""
     head, _, rest = key.partition(".")
-    v = row[head]
-    return float(v[rest]) if rest else float(v)
+    try:
+        v = row[head]
+        return float(v[rest]) if rest else float(v)
+    except (KeyError, TypeError, ValueError) as e:
+        held = row.get(head, "nothing") if hasattr(row, "get") else "nothing"
+        raise StudyRunError(f"output {key}: a run's summary holds no number there "
+                            f"({head} = {held!r}: {e!r})") from None
 
 
 def _percentile_interval(samples: np.ndarray, stat, rng: np.random.Generator) -> tuple[float, float]:
@@ -234,6 +248,36 @@ def read(study: str | os.PathLike[str]) -> dict[str, Any]:
     return decl
 
 
+def _design(sampling: dict[str, Any], maps: list, n: int) -> np.ndarray:
+    """The inputs' values of the Saltelli design of base size ``n`` (one row per run)."""
+    u = saltelli(sampling["method"], len(maps), n, sampling["seed"])
+    return np.column_stack([m(u[:, j]) for j, m in enumerate(maps)])
+
+
+def _check_draws(decl: dict[str, Any], maps: list, sizes: list[int], fixed: list[dict]) -> None:
+    """Every input's smallest and largest value over the designs of ``sizes``, each set on
+    every scene as its runs set it (``fixed``: the study's ``set`` and sampling mesh): a value
+    a scene refuses raises SceneError at the input's declaration, before any run."""
+    x = np.vstack([_design(decl["sampling"], maps, n) for n in sizes])
+    texts = [_impact.read_scene(os.fspath(sc["path"])) for sc in decl["scenes"]]
+    for j, inp in enumerate(decl["inputs"]):
+        for which, value in (("smallest", float(x[:, j].min())), ("largest", float(x[:, j].max()))):
+            for sc, text, set_ in zip(decl["scenes"], texts, fixed):
+                why = _impact.refusal(text, os.fspath(sc["path"]),
+                                      json.dumps({**set_, inp["key"]: value}))
+                if why:
+                    drawn = f"{value:.6g} (the {which} of its {len(x)} values, N up to {max(sizes)})"
+                    raise _impact.SceneError(_refused_draw(inp, drawn, sc["path"], why))
+
+
+def _refused_draw(inp: dict[str, Any], drawn: str, scene: str, why: str) -> str:
+    """The message for a value the design draws that a scene refuses: where the input is
+    declared, the value, the scene's rule, and what to do."""
+    return (f"{inp['at']}: inputs.{inp['key']}.{inp['kind']}: the design draws {drawn}, which "
+            f"{scene} does not allow: {why}; narrow the distribution or truncate it to the "
+            "values allowed (truncated: {normal | lognormal: {...}, lower, upper})")
+
+
 def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
        jobs: int | None = None, sizes: list[int] | None = None, mesh: bool = True) -> UQResult:
     """Runs the study declared in the file ``study`` and returns its :class:`UQResult`.
@@ -265,18 +309,19 @@ def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
     outputs = decl["outputs"]
     level = samp.get("mesh")
     fixed = [{**decl["set"], **(_at_level(sc, level) if level else {})} for sc in scenes]
+    _check_draws(decl, maps, sizes, fixed)
     frames: list[list[pandas.DataFrame]] = [[] for _ in scenes]
     steps: list[Step] = []
     converged_at = None
     done = 0
     for n in sizes:
-        u = saltelli(samp["method"], d, n, samp["seed"])
         if samp["method"] != "sobol":
             frames, done = [[] for _ in scenes], 0
-        x = np.column_stack([m(u[done:, j]) for j, m in enumerate(maps)])
+        design = _design(samp, maps, n)
+        x = design[done:]
         for sc, set_, fr in zip(scenes, fixed, frames):
             fr.append(_run_rows(sc["path"], set_, keys, x, client, jobs))
-        done = len(u)
+        done = len(design)
         per_scene = [pandas.concat(fr, ignore_index=True) for fr in frames]
         stats = {oid: _estimates(np.array([output_value(r, o["key"])
                                            for _, r in per_scene[o["scene"]].iterrows()]),
@@ -293,9 +338,7 @@ def uq(study: str | os.PathLike[str], *, client: "Client | str | None" = None,
     result = UQResult(study=decl, samples=samples, steps=steps, converged_at=converged_at,
                       nominal=nominal)
     if level:
-        n0 = sizes[0]
-        u0 = saltelli(samp["method"], d, n0, samp["seed"])[propagation_rows(d, n0)]
-        x0 = np.column_stack([m(u0[:, j]) for j, m in enumerate(maps)])
+        x0 = _design(samp, maps, sizes[0])[propagation_rows(d, sizes[0])]
         result.spread_check = _spread_check(decl, x0, keys, client, jobs)
     if mesh:
         for i, sc in enumerate(scenes):

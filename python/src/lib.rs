@@ -5,7 +5,11 @@
 //! The GIL is released while the solver or the matrix runs.
 
 mod errors;
+mod overrides;
+mod scene_keys;
 mod simulate;
+mod study_checks;
+mod summary_keys;
 mod uq;
 mod verify;
 
@@ -23,6 +27,8 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(uq::read_study, m)?)?;
     m.add_function(wrap_pyfunction!(uq::gci, m)?)?;
     m.add_function(wrap_pyfunction!(uq::rigid_plastic, m)?)?;
+    m.add_function(wrap_pyfunction!(uq::refusal, m)?)?;
+    m.add_function(wrap_pyfunction!(uq::summary_keys, m)?)?;
     m.add(
         "TIMING_KEYS",
         impact_verification::jobs::TIMING_KEYS.to_vec(),

@@ -4,14 +4,14 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
 use numpy::PyArray1;
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 
 use impact_solver::kernels::fallback;
-use impact_solver::overrides::Overrides;
 use impact_solver::{output, Outcome, Scene};
 
 use crate::errors::to_py;
+use crate::overrides::{self, scene_with};
 
 /// Reads a scene file's text (the CLI's message when it cannot).
 #[pyfunction]
@@ -24,12 +24,16 @@ pub fn read_scene(path: PathBuf) -> PyResult<String> {
 type NativeRun<'py> = (String, Vec<String>, Vec<Bound<'py, PyArray1<f64>>>);
 
 /// Parses `text` (`source` names it in messages), sets `overrides` (a JSON object of dotted
-/// scene keys, see `Scene::from_yaml_with`), validates, passes each plausibility warning's
-/// text to `warn` (before the run, also when it is then refused), runs it without the GIL on
-/// `threads` threads (None: the global pool, one thread per core) and, with `out`, writes the
-/// CLI's files there.
+/// scene keys, see `Scene::from_yaml_with` and `crate::overrides`), validates, passes each
+/// plausibility warning's text to `warn` (before the run, also when it is then refused), runs
+/// it without the GIL on `threads` threads (None: the global pool, one thread per core) and,
+/// with `out`, writes the CLI's files there. `stop`: an object with `is_set()` (a
+/// `threading.Event`), polled with the signals: once set, the run stops with
+/// KeyboardInterrupt (how a sweep stops its runs on other threads, where Python's signal
+/// handlers do not run).
 #[pyfunction]
-#[pyo3(signature = (text, source, out=None, threads=None, overrides=None, warn=None))]
+#[pyo3(signature = (text, source, out=None, threads=None, overrides=None, warn=None, stop=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn simulate<'py>(
     py: Python<'py>,
     text: &str,
@@ -38,21 +42,21 @@ pub fn simulate<'py>(
     threads: Option<Bound<'py, PyAny>>,
     overrides: Option<&str>,
     warn: Option<Bound<'py, PyAny>>,
+    stop: Option<Bound<'py, PyAny>>,
 ) -> PyResult<NativeRun<'py>> {
-    let overrides: Overrides = match overrides {
-        Some(json) => serde_json::from_str(json)
-            .map_err(|e| PyValueError::new_err(format!("overrides: {e}")))?,
-        None => Overrides::new(),
-    };
+    let overrides = overrides::parse(overrides)?;
     let threads = threads.map(|t| thread_count(&t)).transpose()?;
     let policy = fallback::Policy::from_env().map_err(PyValueError::new_err)?;
-    let scene = Scene::from_yaml_with(text, &overrides, &source).map_err(to_py)?;
+    let scene = scene_with(text, &overrides, &source).map_err(to_py)?;
     if let Some(warn) = &warn {
         for w in &scene.warnings {
             warn.call1((w.to_string(),))?;
         }
     }
-    let signals = Arc::new(PythonSignals::default());
+    let signals = Arc::new(PythonSignals {
+        raised: Mutex::new(None),
+        stop: stop.map(Bound::unbind),
+    });
     let outcome = py.detach(|| {
         let run = || fallback::with_policy(policy, || run(&scene, out.as_deref(), &signals));
         match threads {
@@ -93,24 +97,34 @@ fn thread_count(threads: &Bound<'_, PyAny>) -> PyResult<usize> {
 
 /// Ctrl-C from Python: the time loop polls [`PythonSignals::check`] every `POLL_EVERY` steps;
 /// it takes the GIL for the check (the run holds none) and lets Python run its signal handlers
-/// (`PyErr_CheckSignals`: SIGINT raises KeyboardInterrupt). A raised exception stops the run
-/// and is kept, to be raised in place of the solver's own "interrupted" error.
-#[derive(Default)]
+/// (`PyErr_CheckSignals`: SIGINT raises KeyboardInterrupt; on the main thread only), then looks
+/// at the caller's `stop` event (set: KeyboardInterrupt, on any thread). A raised exception
+/// stops the run and is kept, to be raised in place of the solver's own "interrupted" error.
 struct PythonSignals {
     raised: Mutex<Option<PyErr>>,
+    stop: Option<Py<PyAny>>,
 }
 
 impl PythonSignals {
-    /// Whether a Python signal handler raised (the run must stop).
+    /// Whether a Python signal handler raised or `stop` is set (the run must stop).
     fn check(&self) -> bool {
-        Python::attach(|py| match py.check_signals() {
-            Ok(()) => false,
-            Err(e) => {
-                if let Ok(mut slot) = self.raised.lock() {
-                    *slot = Some(e);
-                }
-                true
+        Python::attach(|py| {
+            let raised = py.check_signals().err().or_else(|| self.stopped(py));
+            let Some(e) = raised else {
+                return false;
+            };
+            if let Ok(mut slot) = self.raised.lock() {
+                *slot = Some(e);
             }
+            true
+        })
+    }
+
+    /// KeyboardInterrupt when the `stop` event is set.
+    fn stopped(&self, py: Python<'_>) -> Option<PyErr> {
+        let set = self.stop.as_ref()?.bind(py).call_method0("is_set").ok()?;
+        set.is_truthy().unwrap_or(false).then(|| {
+            PyKeyboardInterrupt::new_err("stopped: the sweep this run belongs to was interrupted")
         })
     }
 

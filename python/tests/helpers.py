@@ -1,4 +1,5 @@
-"""Reading the CLI's files back exactly, and comparing runs with wall-clock keys aside."""
+"""Reading the CLI's files back exactly, comparing runs with wall-clock keys aside, and
+writing small study declarations."""
 from __future__ import annotations
 
 import csv
@@ -8,6 +9,8 @@ from pathlib import Path
 import numpy as np
 
 import impact
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def read_history(path: Path) -> dict[str, np.ndarray]:
@@ -33,3 +36,15 @@ def assert_same_history(a: dict[str, np.ndarray], b: dict[str, np.ndarray]) -> N
         assert a[name].dtype == np.float64 and b[name].dtype == np.float64
         # Bit for bit: compare the raw bytes (also tells -0.0 from 0.0, and NaN payloads).
         assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def write_study(folder: Path, inputs: str, sampling: str = "{method: sobol, seed: 1, sizes: [4, 8]}",
+                outputs: str = "{impulse_Ns: {}}", scene: str = "paper-plastic.yaml") -> Path:
+    """``folder/study.yaml`` on a scene of verification/scenes: ``inputs`` (indented lines)
+    on line 4, ``sampling`` on the line after them, ``outputs`` on the last line."""
+    text = (f"title: t\nscene: {ROOT / 'verification' / 'scenes' / scene}\ninputs:\n{inputs}"
+            f"sampling: {sampling}\nconvergence: {{mean: 0.01, std: 0.1, total_index: 0.1}}\n"
+            f"mesh_levels: [0.25, 0.5, 1.0]\noutputs: {outputs}\n")
+    path = folder / "study.yaml"
+    path.write_text(text)
+    return path

@@ -1,5 +1,6 @@
 """`impact.uq` (issue 27): a study's declaration is validated with file:line:col messages
-(bad distributions, a missing source, sizes that do not double, a key the scene refuses); the
+(bad distributions, a missing source, sizes that do not double, a key the scene does not have,
+with the keys it has; test_uq_declaration.py: the rest of the whole-declaration check); the
 declared distributions map the unit interval onto the declared moments; Saltelli's scrambled
 Sobol' design is nested (the design of N is the first rows of 2 N's); and the CI study
 (verification/uq/ci-coarse.yaml, 40 x 8 mesh, N = 4 and 8: 88 runs) gives the same rows on
@@ -14,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers import without_timing
+from helpers import without_timing, write_study
 
 import impact
 from impact import _impact
@@ -23,16 +24,6 @@ from impact._uq_design import saltelli
 
 ROOT = Path(__file__).resolve().parents[2]
 CI_STUDY = ROOT / "verification" / "uq" / "ci-coarse.yaml"
-
-
-def write_study(tmp_path: Path, inputs: str, sampling: str = "{method: sobol, seed: 1, sizes: [4, 8]}") -> Path:
-    scene = ROOT / "verification" / "scenes" / "paper-plastic.yaml"
-    text = (f"title: t\nscene: {scene}\ninputs:\n{inputs}sampling: {sampling}\n"
-            "convergence: {mean: 0.01, std: 0.1, total_index: 0.1}\n"
-            "mesh_levels: [0.25, 0.5, 1.0]\noutputs: {impulse_Ns: {}}\n")
-    path = tmp_path / "study.yaml"
-    path.write_text(text)
-    return path
 
 
 @pytest.mark.parametrize("inputs, sampling, message", [
@@ -45,7 +36,8 @@ def write_study(tmp_path: Path, inputs: str, sampling: str = "{method: sobol, se
     ("  plate.width: {truncated: {normal: {mean: 0.179, std: 0.001}, lower: 0.18, upper: 0.19}, source: s}\n", None,
      r"study\.yaml:4:\d+: inputs\.plate\.width\.truncated = \[0\.18, 0\.19\]: must hold the mean"),
     ("  plate.colour: {uniform: {lower: 1.0, upper: 2.0}, source: s}\n", None,
-     r"study\.yaml:4:\d+: inputs\.plate\.colour: not a settable scene key"),
+     r"study\.yaml:4:\d+: inputs\.plate\.colour: not a scene key: `plate` has no key `colour`; "
+     r"its keys: ends, length, thickness, width"),
     ("  plate.width: {uniform: {lower: 0.17, upper: 0.18}, source: s}\n", "{method: sobol, seed: 1, sizes: [4, 6]}",
      r"study\.yaml:\d+:\d+: sampling\.sizes = \[4, 6\]: must be powers of two"),
     ("  plate.width: {gamma: {k: 1.0}, source: s}\n", None, r"study\.yaml:4:\d+: .*gamma"),
