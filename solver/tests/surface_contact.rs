@@ -58,7 +58,11 @@ fn a_light_striker_s_landing_is_booked_and_the_balance_closes() {
     );
     // The landings took nearly all of the striker's 0.05 J: booked, and said.
     let put_in = s.initial_energy.total();
-    assert!(s.final_energy.contact > 0.9 * put_in, "{:?}", s.final_energy);
+    assert!(
+        s.final_energy.contact > 0.9 * put_in,
+        "{:?}",
+        s.final_energy
+    );
     assert_eq!(s.result_warnings.len(), 1, "{:?}", s.result_warnings);
     assert!(
         s.result_warnings[0].contains("the kinematic surface contact took 9"),
@@ -90,7 +94,10 @@ fn a_nose_crossed_in_one_step_stops_the_run_naming_the_step() {
     let text = coarse(|t| t.replace("nose_radius: 0.0125", "nose_radius: 1.0e-6"));
     let e = simulate(&scene(&text), &mut Quiet).unwrap_err().to_string();
     assert!(e.contains("crossed the nose"), "{e}");
-    assert!(e.contains("of its radius") && e.contains("time.dt.cfl"), "{e}");
+    assert!(
+        e.contains("of its radius") && e.contains("time.dt.cfl"),
+        "{e}"
+    );
 }
 
 #[test]

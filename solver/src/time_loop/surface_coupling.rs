@@ -7,7 +7,9 @@
 use crate::input::scene::{Enforcement, SurfaceImpactor};
 use crate::mesh::PlateMesh;
 use crate::physics::contacts::impulse_ledger::ImpulseLedger;
-use crate::physics::contacts::nose_contact::{KinematicScratch, NoseForces, NoseSurface, SurfaceNode};
+use crate::physics::contacts::nose_contact::{
+    KinematicScratch, NoseForces, NoseSurface, SurfaceNode,
+};
 use crate::physics::elements::element::{element_max_eigenvalue, Formulation};
 use crate::physics::impactor::CentralDifferenceImpactor;
 use crate::physics::materials::material::ConstitutiveModel;

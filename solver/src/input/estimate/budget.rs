@@ -90,7 +90,11 @@ impl Estimate {
         let steps = (end / dt).ceil();
         let step_follows_mesh = scene.time.dt_update == DtUpdate::EveryStep;
         // Rows at most one a step; a step that falls as the mesh deforms does not cap them.
-        let row_cap = if step_follows_mesh { f64::INFINITY } else { steps };
+        let row_cap = if step_follows_mesh {
+            f64::INFINITY
+        } else {
+            steps
+        };
         let history_rows = match scene.output.every {
             Some(every) => (end / every).ceil().min(row_cap) + 1.0,
             None => steps + 1.0,

@@ -89,7 +89,11 @@ mod tests {
         // At t_1 the mean velocity is -1.5 m/s: kinetic 2.25 J of 9 J, 6.75 J removed.
         let mean = 0.5 * v;
         let removed = 0.5 * m * (v * v - mean * mean);
-        assert!((book.dissipated() - removed).abs() < 1e-15, "{}", book.dissipated());
+        assert!(
+            (book.dissipated() - removed).abs() < 1e-15,
+            "{}",
+            book.dissipated()
+        );
         // At t_2 all of it.
         book.open();
         book.close();
