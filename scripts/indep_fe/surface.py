@@ -140,13 +140,20 @@ class SurfaceNose:
         return f, self.s * P, E, count, half
 
     # ------------------------------------------------------------------ kinematic
+    def free_velocity(self, vc: np.ndarray, fc: np.ndarray, dt: float, first: bool,
+                      h: float | None = None) -> tuple[float, np.ndarray]:
+        """The velocity step h of step 3 (default dt/2 at n = 0, else dt; section 6b: given) and
+        the candidates' contact-free v_{n+1/2} = v_{n-1/2} - h f_int / m ((n_c, 2))."""
+        hs = (0.5 * dt if first else dt) if h is None else h
+        return hs, vc - hs * fc * self.im
+
     def kinematic_forces(self, uc: np.ndarray, vc: np.ndarray, fc: np.ndarray, dt: float,
                          first: bool, h: float | None = None):
         """The kinematic solve of section 5b from the candidates' u_n, v_{n-1/2} and f_int(u_n)
         (each (n_c, 2)): returns (lambda (n_c,), n (n_c, 2), d_x at the prediction). dt is
         dt_{n+1/2}, h the velocity step (default dt/2 at n = 0, else dt; section 6b: given)."""
-        hs = (0.5 * dt if first else dt) if h is None else h   # the velocity step of step 3
-        up = uc + dt * (vc - hs * fc * self.im)             # contact-free u_{n+1}
+        hs, v_free = self.free_velocity(vc, fc, dt, first, h)
+        up = uc + dt * v_free                               # contact-free u_{n+1}
         dp = self.dS + dt * (self.v0 if first else self.v_half)
         dx, dy, dist, g = self.gap(up, dp)
         ok = dist > 0.0
@@ -191,8 +198,8 @@ class SurfaceNose:
         on = lam > 0.0
         self.n_contact = float(np.sum(self.weight[on]))
         self.half_width = float(np.max(np.abs(dx[on]))) if on.any() else 0.0
-        hs = (0.5 * dt if first else dt) if h is None else h
-        after = vc - hs * fc * self.im + hs * self.f * self.im
+        hs, v_free = self.free_velocity(vc, fc, dt, first, h)
+        after = v_free + hs * self.f * self.im
         W_plate, at_plate = impulse_work(self.s * hs * self.f, vc, after, first)
         before = self.v0 if first else self.v_half
         W_body, at_body = impulse_work(np.array([-hs * self.F]), before,

@@ -24,8 +24,9 @@ pub(crate) struct SurfaceImpact {
     enforcement: Enforcement,
     /// Symmetry factor `s`.
     s: f64,
-    /// The kinematic solve's buffers: the candidates' contact-free displacements at `t_{n+1}`
-    /// (m) and inverse masses (1/kg), its scratch.
+    /// The kinematic solve's buffers: the candidates' contact-free velocities `v_{n+1/2}`
+    /// (m/s) and displacements at `t_{n+1}` (m), their inverse masses (1/kg), its scratch.
+    free_velocity: Vec<[f64; 2]>,
     predicted: Vec<[f64; 2]>,
     inverse_mass: Vec<[f64; 2]>,
     scratch: KinematicScratch,
@@ -72,6 +73,7 @@ impl SurfaceImpact {
             },
             enforcement: spec.contact.enforcement,
             s: mesh.symmetry_factor,
+            free_velocity: vec![[0.0; 2]; k],
             predicted: vec![[0.0; 2]; k],
             inverse_mass,
             scratch: KinematicScratch::default(),
@@ -124,6 +126,7 @@ impl SurfaceImpact {
                 for d in 0..2 {
                     let dof = 2 * n.node + d;
                     let v_free = v[dof] + h * (-f_int[dof] * self.inverse_mass[k][d]);
+                    self.free_velocity[k][d] = v_free;
                     self.predicted[k][d] = u[dof] + dt * v_free;
                 }
             }
@@ -136,22 +139,21 @@ impl SurfaceImpact {
                 &mut self.scratch,
                 &mut self.forces,
             );
-            self.book_impulses(h, v, f_int);
+            self.book_impulses(h, v);
         }
         self.force()
     }
 
     /// The works of step `n`'s contact impulses `h f` on the candidates (their `v_{n-1/2}` in
-    /// `v`, `f_int - f_ext` without the contact in `f_int`) and `-h F_n` on the impactor (its
-    /// velocity positive down).
-    fn book_impulses(&mut self, h: f64, v: &[f64], f_int: &[f64]) {
+    /// `v`; after the impulse, their contact-free velocity plus `h f / m`) and `-h F_n` on the
+    /// impactor (its velocity positive down).
+    fn book_impulses(&mut self, h: f64, v: &[f64]) {
         self.work.open();
         for (k, n) in self.nose.nodes.iter().enumerate() {
             for d in 0..2 {
-                let (dof, im) = (2 * n.node + d, self.inverse_mass[k][d]);
                 let impulse = h * self.forces.on_node[k][d];
-                let after = v[dof] - h * f_int[dof] * im + impulse * im;
-                self.work.book(self.s, impulse, v[dof], after);
+                let after = self.free_velocity[k][d] + impulse * self.inverse_mass[k][d];
+                self.work.book(self.s, impulse, v[2 * n.node + d], after);
             }
         }
         let before = self.body.half_step_velocity;
