@@ -60,16 +60,17 @@ fn a_changed_scene_is_reported_check_by_check_against_the_baseline() {
     );
     let same = root.join("out-same");
     let text = verify(&root, &same, &["--baseline", main.to_str().unwrap()]);
-    // 2 checks of the case and 4 of invariants/history-summary on its impact run.
-    assert!(text.contains("6 unchanged, 0 moved within 10 % of their tolerance, 0 moved more, 0 changed status; 0 run histories moved"), "{text}");
+    // 2 checks of the case and 7 of invariants/history-summary on its impact run.
+    assert!(text.contains("9 unchanged, 0 moved within 10 % of their tolerance, 0 moved more, 0 changed status; 0 run histories moved"), "{text}");
 
     scratch("10.5");
     let branch = root.join("out-branch");
     let text = verify(&root, &branch, &["--baseline", main.to_str().unwrap()]);
     assert!(
         // the impulse and one invariants/history-summary check of the changed run moved
-        // (the contact energy's sign stays 0)
-        text.contains("4 unchanged, 0 moved within 10 % of their tolerance, 2 moved more"),
+        // (the contact energy's sign and the counts of extremes, start and end values and stop
+        // reason that disagree stay 0)
+        text.contains("7 unchanged, 0 moved within 10 % of their tolerance, 2 moved more"),
         "{text}"
     );
     let results: serde_json::Value =

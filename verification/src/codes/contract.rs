@@ -67,6 +67,7 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
         summary: Some(summary),
         files: BTreeMap::new(),
         cost,
+        scene_values: BTreeMap::new(),
     })
 }
 

@@ -27,6 +27,10 @@ pub struct RunData {
     /// What the run cost on this machine (scene runs; never in results.json, which must not
     /// depend on the machine: `costs.json` holds it).
     pub cost: Option<Cost>,
+    /// Scalars of the scene as run that the matrix's invariants need (the end of its time,
+    /// `summary_invariants::END_METRICS`, s): inputs, not results, so never compared, shown or
+    /// written to results.json; carried by the shards.
+    pub scene_values: BTreeMap<String, f64>,
 }
 
 /// A scene run's cost: wall-clock seconds over its elements and steps.

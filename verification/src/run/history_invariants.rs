@@ -11,7 +11,9 @@
 //! `contact-energy-sign`, the column never below zero beyond round-off (a contact takes energy
 //! or stores it; one that gives it is a wrong gap or a pulling force). Per wall run, the
 //! wall's keys against their columns (`wall_invariants.rs`). Per kinematic surface run, its
-//! deepest penetration against round-off (`surface_invariants.rs`). Per run with
+//! deepest penetration against round-off (`surface_invariants.rs`). Per scene run of impact's
+//! own, its extremes, start and end values and stop reason against the history and the scene's
+//! end (`summary_invariants.rs`). Per run with
 //! contact (an impactor and at least one contact interval), three checks:
 //! - `contact-state`: the rows whose force is positive are exactly the rows inside the
 //!   summary's `contact_intervals_s` (`[first t_n with F > 0, first later t_n with F = 0)`;
@@ -33,7 +35,7 @@ use crate::definition::check::CheckResult;
 use crate::definition::run_data::RunData;
 
 use super::invariant_row::row;
-use super::{surface_invariants, wall_invariants};
+use super::{summary_invariants, surface_invariants, wall_invariants};
 
 pub const SUITE: &str = "invariants";
 pub const CASE: &str = "history-summary";
@@ -201,9 +203,9 @@ pub const TITLE: &str =
     "Every impact and wall run of the matrix - the summary's contact and wall keys against its own history";
 pub const REQUIREMENT: (&str, &str) = (
     "REQ-INV-HISTORY-SUMMARY",
-    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the contact energy shall never fall below zero beyond round-off, for every run with contact energy; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run; no node shall stay in the nose beyond round-off, for every kinematic surface run.",
+    "The impulse, the contact duration and the contact intervals a run's summary reports shall agree with its history's contact force, for every impact run; the contact energy shall never fall below zero beyond round-off, for every run with contact energy; the wall's final length, foot radius, largest foot radius, peak forces, dissipation, release and rebound shall be the history's own columns at the end or at their largest, for every wall run; no node shall stay in the nose beyond round-off, for every kinematic surface run; the peak force, the largest displacements, von Mises stresses and balance error shall be their history columns' extremes over every step, the final time and the initial and final energies the first and last rows', and the stop reason the one the scene's end and the history give, for every scene run.",
 );
-pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every kinematic surface run (verification/src/run/surface_invariants.rs): max_penetration_m within round-off of the deflection. Every run with contact energy: the contact_energy_J column never below zero beyond round-off (a contact that gives energy: a gap that ignores the nodes' sideways motion, a pulling force). Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails.";
+pub const PROBLEM: &str = "Made by the matrix from every impact run it makes (verification/src/run/history_invariants.rs): the rows with a positive force are exactly those inside the summary's contact intervals, the duration is their sum, and the impulse is the trapezoid of the history's force within the history's output sampling. A summary impulse or duration that drifts from the force (a step missed, an interval closed one output interval late) fails here whichever keys its own case checks. Every kinematic surface run (verification/src/run/surface_invariants.rs): max_penetration_m within round-off of the deflection. Every run with contact energy: the contact_energy_J column never below zero beyond round-off (a contact that gives energy: a gap that ignores the nodes' sideways motion, a pulling force). Every wall run (verification/src/run/wall_invariants.rs): each wall key is its history column at the end or its largest over the steps, so a key whose definition drifts from its column's (the final length counting the gap after release, a largest foot radius below the final one) fails. Every scene run (verification/src/run/summary_invariants.rs): the extremes (peak force, most negative mid-plane and bottom u_y, each probe's von Mises stress, balance error) against their columns over the rows (exact when every step is a row, never short of them otherwise), final time and energies against the last and first rows (exact), the stop reason against the scene's end and the contact intervals.";
 
 /// The case's checks from the matrix's impact runs (`(suite/case/scene, run)`, each run
 /// once), kept when `suite/case/check` contains `filter`.
@@ -227,6 +229,9 @@ pub fn case_checks<'a>(
         }
         if let Some(depth) = surface_invariants::kinematic_penetration(run) {
             all.push(surface_invariants::penetration_check(&name, depth));
+        }
+        if let Some(r) = summary_invariants::recompute(run) {
+            all.extend(summary_invariants::checks(&name, &r));
         }
     }
     all.retain(|k| {

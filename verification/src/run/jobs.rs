@@ -214,6 +214,7 @@ fn run_scene(scene: &Scene, stress_bound: bool) -> Result<RunData, String> {
             n_steps: s.n_steps as f64,
             code_time_s: None,
         }),
+        scene_values: end_values(&scene.time.end),
     })
 }
 
@@ -348,6 +349,17 @@ fn load_text(load: &Load) -> String {
             "the body at {} m/s onto a rigid frictionless wall at y = 0",
             w.velocity
         ),
+    }
+}
+
+/// The scene's end (s), for the stop reason's invariant (`summary_invariants::END_VALUES`).
+fn end_values(end: &End) -> BTreeMap<String, f64> {
+    let [at, after_contact, limit] = crate::run::summary_invariants::END_VALUES.map(String::from);
+    match *end {
+        End::At(t) => BTreeMap::from([(at, t)]),
+        End::AfterContact { after, limit: l } => {
+            BTreeMap::from([(after_contact, after), (limit, l)])
+        }
     }
 }
 

@@ -20,5 +20,6 @@ pub mod plan;
 pub mod rigid_plastic;
 pub mod runner;
 pub mod shard;
+pub mod summary_invariants;
 pub mod surface_invariants;
 pub mod wall_invariants;

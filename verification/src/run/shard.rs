@@ -98,6 +98,8 @@ struct StoredRun {
     /// The run's cost on the shard's machine (for costs.json).
     #[serde(default)]
     cost: Option<crate::definition::run_data::Cost>,
+    #[serde(default)]
+    scene_values: BTreeMap<String, String>,
 }
 
 #[derive(Debug, Serialize, Deserialize)]
@@ -135,6 +137,11 @@ impl StoredRun {
             info: d.info.clone(),
             summary: d.summary.clone(),
             cost: d.cost,
+            scene_values: d
+                .scene_values
+                .iter()
+                .map(|(k, v)| (k.clone(), v.to_string()))
+                .collect(),
         }
     }
 
@@ -169,6 +176,11 @@ impl StoredRun {
             summary: self.summary,
             files: BTreeMap::new(),
             cost: self.cost,
+            scene_values: self
+                .scene_values
+                .into_iter()
+                .map(|(k, v)| Ok((k, parse(&v)?)))
+                .collect::<Result<_, String>>()?,
         })
     }
 }
