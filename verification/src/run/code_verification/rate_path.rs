@@ -17,6 +17,20 @@
 //!
 //! The transient decays like `exp(-lambda t)` with `lambda = 3 mu d kdot / d q` (10^4 1/s
 //! and more here); the block is strained to 20 yield strains, thousands of time constants.
+//!
+//! With `thermal_m` (Johnson-Cook's `m`, 1 or 2) the law heats adiabatically (solver/ALGORITHM.md
+//! 3b: `rho c dT = beta q dk`) and softens, `q = A R Theta`, `Theta = 1 - T*^m`,
+//! `T* = (T - T0) / (Tm - T0)`, `R = 1 + C ln(kdot / rate0)` at the steady rate. Along the
+//! flow `dT*/dk = (1 - T*^m) / k_c` with `k_c = rho c (Tm - T0) / (beta A R)`, so, from `T* = 0`:
+//! - `m = 1`: `T* = 1 - exp(-k / k_c)`, `q = A R exp(-k / k_c)`;
+//! - `m = 2`: `T* = tanh(k / k_c)`, `q = A R / cosh^2(k / k_c)`;
+//!
+//! each read at the point's own equivalent plastic strain `k`. The material is fictitious
+//! (`c = 46 J/(kg K)`, `Tm - T0 = 150 K`, `beta = 0.9`: `k_c` about 0.24) so that the
+//! heating softens the flow stress eightfold within the path. What the closed form leaves out
+//! is the step's: the softening uses the temperature at the start of the step (section 3b),
+//! `dk / k_c` per step, and the steady rate is the path's only up to the elastic strain the
+//! softening releases (`q' / 3 mu`, a few 1e-3 of the rate, `C` times that in `R`).
 
 use std::collections::BTreeMap;
 
@@ -27,7 +41,7 @@ use impact_solver::material::{von_mises, ConstitutiveModel, Elastic};
 use impact_solver::mesh::PlateMesh;
 use impact_solver::model::AnyFormulation;
 use impact_solver::rate_plasticity::ViscoPlastic;
-use impact_solver::scene::{Hardening, Material, Plasticity};
+use impact_solver::scene::{Hardening, Material, Plasticity, Thermal};
 use serde_json::Value;
 
 use super::driver::mapped_mesh;
@@ -79,7 +93,7 @@ fn law(p: &Params) -> Result<RateLaw, String> {
         "johnson-cook" => Ok(RateLaw::JohnsonCook {
             c: param(p, "C", 0.0089)?,
             reference_rate: param(p, "reference_rate", 1.0)?,
-            thermal: None,
+            thermal: thermal(p)?,
         }),
         other => Err(format!(
             "param law: {other}, expected cowper-symonds or johnson-cook"
@@ -87,7 +101,28 @@ fn law(p: &Params) -> Result<RateLaw, String> {
     }
 }
 
-/// The closed-form steady flow stress at plastic rate `kdot` (1/s), Pa.
+/// The fictitious heating of the adiabatic closed forms (module documentation), with
+/// Johnson-Cook's `m` from `thermal_m` (1 or 2); `None` without `thermal_m`.
+fn thermal(p: &Params) -> Result<Option<Thermal>, String> {
+    let Some(m) = p.get("thermal_m") else {
+        return Ok(None);
+    };
+    let m = m
+        .as_f64()
+        .filter(|m| *m == 1.0 || *m == 2.0)
+        .ok_or_else(|| {
+            format!("param thermal_m: {m}, expected 1 or 2 (the exponents with a closed form)")
+        })?;
+    Ok(Some(Thermal {
+        initial_temperature: 293.15,
+        melting_temperature: 443.15,
+        specific_heat: 46.0,
+        taylor_quinney: 0.9,
+        softening_exponent: m,
+    }))
+}
+
+/// The closed-form steady flow stress at plastic rate `kdot` (1/s) before any heating, Pa.
 fn steady_flow_stress(law: &RateLaw, sigma0: f64, kdot: f64) -> f64 {
     match *law {
         RateLaw::CowperSymonds { d, q } => sigma0 * (1.0 + (kdot / d).powf(1.0 / q)),
@@ -95,6 +130,27 @@ fn steady_flow_stress(law: &RateLaw, sigma0: f64, kdot: f64) -> f64 {
             c, reference_rate, ..
         } => sigma0 * (1.0 + c * (kdot / reference_rate).max(1.0).ln()),
     }
+}
+
+/// Adiabatic steady flow at equivalent plastic strain `k` (module documentation): the flow
+/// stress (Pa) and the temperature (K) of a point whose unheated flow stress is `q0` (Pa),
+/// density `rho` (kg/m^3); `(q0, None)` without heating.
+fn adiabatic_flow(law: &RateLaw, q0: f64, rho: f64, k: f64) -> (f64, Option<f64>) {
+    let Some(t) = law.thermal() else {
+        return (q0, None);
+    };
+    let range = t.melting_temperature - t.initial_temperature;
+    let k_c = rho * t.specific_heat * range / (t.taylor_quinney * q0);
+    let x = k / k_c;
+    let (homologous, softening) = if t.softening_exponent == 1.0 {
+        (1.0 - (-x).exp(), (-x).exp())
+    } else {
+        (x.tanh(), 1.0 / x.cosh().powi(2))
+    };
+    (
+        q0 * softening,
+        Some(t.initial_temperature + range * homologous),
+    )
 }
 
 /// The solver's perfectly plastic material with `law` (a power curve with B = 0 for
@@ -126,11 +182,12 @@ pub(crate) fn perfectly_plastic(
     .expect("a rate-dependent material")
 }
 
-/// The march to `end` s at `rate` 1/s: per history row (time, von Mises stress of point 0 of
-/// element 0, its plastic rate), and at the end the largest spread of the von Mises stress
-/// over the points (Pa).
+/// The march to `end` s at `rate` 1/s: per history row (time s, von Mises stress Pa of point
+/// 0 of element 0, its plastic rate 1/s, its equivalent plastic strain, its temperature K or
+/// NaN without heating), and at the end the largest spread of the von Mises stress over the
+/// points (Pa).
 struct Run {
-    rows: Vec<[f64; 3]>,
+    rows: Vec<[f64; 5]>,
     spread: f64,
 }
 
@@ -160,8 +217,11 @@ fn march<F: Formulation>(
         if n % every == 0 || n == steps {
             let s = model.point_stress(0, 0, &u);
             let state = model.state(0, 0);
-            let kdot = model.material.plastic_strain_rate(&state).unwrap_or(0.0);
-            rows.push([t, von_mises(&s), kdot]);
+            let m = &model.material;
+            let kdot = m.plastic_strain_rate(&state).unwrap_or(0.0);
+            let k = m.equivalent_plastic_strain(&state);
+            let temperature = m.temperature(&state).unwrap_or(f64::NAN);
+            rows.push([t, von_mises(&s), kdot, k, temperature]);
         }
         if n == steps {
             break;
@@ -209,6 +269,17 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
         Some(Value::String(s)) if s == "rate-independent" => {
             RateLaw::CowperSymonds { d: 1e12, q: 5.0 }
         }
+        // The same law without its heating: a flow stress that ignores the temperature.
+        Some(Value::String(s)) if s == "unheated" => match law {
+            RateLaw::JohnsonCook {
+                c, reference_rate, ..
+            } => RateLaw::JohnsonCook {
+                c,
+                reference_rate,
+                thermal: None,
+            },
+            other => other,
+        },
         _ => law,
     };
     let rates = param_numbers(p, "rates", &[1.0, 10.0, 100.0])?;
@@ -235,8 +306,10 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
         let mat = perfectly_plastic(model_law, model_sigma0, STEEL);
         let run = impact_solver::with_formulation!(any, f => march(&mesh, f, (path, rate, strain / rate), mat));
         let kdot = path.steady_plastic_rate(rate);
-        let closed = steady_flow_stress(&law, sigma0, kdot);
+        let unheated = steady_flow_stress(&law, sigma0, kdot);
+        let flow = |k: f64| adiabatic_flow(&law, unheated, STEEL.2, k);
         let last = run.rows[run.rows.len() - 1];
+        let (closed, temperature) = flow(last[3]);
         let tag = format!("r{rate}");
         m.insert(format!("flow_stress_{tag}_Pa"), last[1]);
         m.insert(format!("flow_stress_closed_form_{tag}_Pa"), closed);
@@ -248,19 +321,27 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
         m.insert(format!("plastic_rate_{tag}_1_s"), last[2]);
         m.insert(format!("plastic_rate_closed_form_{tag}_1_s"), kdot);
         m.insert(format!("stress_spread_{tag}_Pa"), run.spread);
-        let strains: Vec<f64> = run.rows.iter().map(|r| r[0] * rate).collect();
-        for (c, name) in [(1, "von_mises"), (2, "plastic_rate")] {
-            let unit = if c == 1 { "Pa" } else { "1_s" };
-            columns.push(format!("{name}_r{rate}_{unit}"));
-            per_rate.push(
-                per_rate[0]
-                    .iter()
-                    .map(|&e| interpolate(&strains, &run.rows, c, e))
-                    .collect(),
+        if let Some(closed_temperature) = temperature {
+            m.insert(format!("plastic_strain_{tag}"), last[3]);
+            m.insert(format!("temperature_{tag}_K"), last[4]);
+            m.insert(
+                format!("temperature_closed_form_{tag}_K"),
+                closed_temperature,
             );
         }
+        let strains: Vec<f64> = run.rows.iter().map(|r| r[0] * rate).collect();
+        let at = |c: usize| -> Vec<f64> {
+            let rows = &run.rows;
+            per_rate[0]
+                .iter()
+                .map(|&e| interpolate(&strains, rows, c, e))
+                .collect()
+        };
+        let (stress, plastic_rate, k) = (at(1), at(2), at(3));
+        columns.push(format!("von_mises_r{rate}_Pa"));
+        columns.push(format!("plastic_rate_r{rate}_1_s"));
         columns.push(format!("closed_form_r{rate}_Pa"));
-        per_rate.push(vec![closed; GRID + 1]);
+        per_rate.extend([stress, plastic_rate, k.iter().map(|&k| flow(k).0).collect()]);
     }
     let values = (0..=GRID)
         .flat_map(|j| per_rate.iter().map(move |col| col[j]))
@@ -272,7 +353,7 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
 }
 
 /// Column `c` of `rows` at strain `e`, linear between the rows' `strains` (held at the ends).
-fn interpolate(strains: &[f64], rows: &[[f64; 3]], c: usize, e: f64) -> f64 {
+fn interpolate(strains: &[f64], rows: &[[f64; 5]], c: usize, e: f64) -> f64 {
     let i = strains
         .partition_point(|&s| s < e)
         .clamp(1, strains.len() - 1);
@@ -313,5 +394,47 @@ mod tests {
         assert!(right["overstress_ratio_closed_form_r10"] > 0.5);
         let strong = metrics(&[("model_yield_stress", Value::from(275e6))]);
         assert!((rel(&strong) - 0.1).abs() < 1e-3, "{strong:?}");
+    }
+
+    /// The adiabatic closed forms (m = 1 in uniaxial strain, m = 2 in simple shear, at
+    /// 1000 1/s) are met within the case's tolerances (relative 3e-3 on the flow stress, 1e-3 of
+    /// the temperature rise), and the wrong models miss them: the law without its heating (a
+    /// flow stress that ignores the temperature) by a factor 6 and more, the other exponent
+    /// by 40 % and more.
+    #[test]
+    fn a_flow_stress_that_ignores_the_temperature_fails_the_adiabatic_checks() {
+        for (m, path, other_m) in [(1.0, "uniaxial-strain", 2.0), (2.0, "simple-shear", 1.0)] {
+            let run = |extra: &[(&str, Value)]| {
+                let mut args = vec![
+                    ("law", Value::from("johnson-cook")),
+                    ("path", Value::from(path)),
+                    ("thermal_m", Value::from(m)),
+                    ("strain_over_yield", Value::from(400.0)),
+                    ("rates", serde_json::json!([1000.0])),
+                ];
+                args.extend(extra.iter().cloned());
+                let mut p = Params::new();
+                for (k, v) in args {
+                    p.insert(k.into(), v);
+                }
+                rate_strain_path(&p).unwrap().metrics
+            };
+            let stress = |r: &BTreeMap<String, f64>| {
+                r["flow_stress_r1000_Pa"] / r["flow_stress_closed_form_r1000_Pa"] - 1.0
+            };
+            let right = run(&[]);
+            let rise = right["temperature_closed_form_r1000_K"] - 293.15;
+            let heat = (right["temperature_r1000_K"] - 293.15) / rise - 1.0;
+            assert!(
+                stress(&right).abs() < 3e-3 && heat.abs() < 1e-3,
+                "{m}: {right:?}"
+            );
+            let unheated = run(&[("model_law", Value::from("unheated"))]);
+            assert!(stress(&unheated) > 5.0, "{m}: {unheated:?}");
+            let exponent = run(&[("thermal_m", Value::from(other_m))]);
+            // (the closed form follows thermal_m: compare the two runs' stresses instead)
+            let apart = exponent["flow_stress_r1000_Pa"] / right["flow_stress_r1000_Pa"] - 1.0;
+            assert!(apart.abs() > 0.4, "{m}: {apart}");
+        }
     }
 }
