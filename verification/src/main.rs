@@ -49,6 +49,11 @@ enum Command {
         /// of cores). Results are bit-identical for every thread count.
         #[arg(long, value_parser = parse_threads)]
         threads: Option<usize>,
+        /// When the run stops on an error or Ctrl-C after it began, keep what it wrote in
+        /// --out: history.csv up to the stop, the field frames, and stopped.json (why and when)
+        /// instead of summary.json. Without it nothing is left behind.
+        #[arg(long)]
+        keep_partial: bool,
     },
     /// Run the verification matrix: prints suite/case/check/status, writes results.json,
     /// junit.xml and matrix.txt to --out. Exit status: 0 when every failing check is a
@@ -164,6 +169,7 @@ fn main() -> ExitCode {
             max_memory,
             force,
             threads,
+            keep_partial,
         } => {
             let options = RunOptions {
                 progress: match (quiet, std::io::stderr().is_terminal()) {
@@ -176,6 +182,7 @@ fn main() -> ExitCode {
                 // The history streams to history.csv: memory does not grow with time.end.
                 keep_history: false,
                 stop: None,
+                keep_partial,
             };
             simulate(&scene, &out, &options, threads, quiet)
         }

@@ -4,7 +4,9 @@
 //! the next run removes and reports; `/` and foreign non-empty folders are refused as --out;
 //! progress goes to stderr as plain lines when it is not a terminal; --threads 0 is refused;
 //! a time step that makes no run (density 1e-300 or 1e300) is refused at once naming the
-//! input, and a tiny output.every writes every step instead of hanging.
+//! input, and a tiny output.every writes every step instead of hanging; with --keep-partial a
+//! run stopped by an error or by SIGTERM keeps its history up to the stop and stopped.json
+//! (no summary.json), which the next complete run replaces (issue 40).
 //! Reference: the behaviour the issue asks for, observed through the real binary.
 
 use std::path::{Path, PathBuf};
@@ -92,6 +94,11 @@ fn a_billion_element_scene_is_refused_at_once_with_its_estimate() {
 
 /// Starts a run of a few seconds with stderr piped and waits until its staging folder exists.
 fn start_long_run(d: &Path, out: &Path) -> Child {
+    start_long_run_with(d, out, &[])
+}
+
+/// [`start_long_run`] with `extra` arguments.
+fn start_long_run_with(d: &Path, out: &Path, extra: &[&str]) -> Child {
     let s = scene(d, "long", |t| {
         t.replace("end: 3.0e-3", "end: 2.0")
             .replace("every: 1.0e-6", "every: 1.0e-3")
@@ -102,6 +109,7 @@ fn start_long_run(d: &Path, out: &Path) -> Child {
         "--out",
         out.to_str().unwrap(),
     ])
+    .args(extra)
     .stderr(Stdio::piped())
     .stdout(Stdio::null())
     .spawn()
@@ -272,4 +280,81 @@ fn a_time_step_that_makes_no_run_is_refused_and_a_tiny_output_interval_does_not_
         - 1;
     assert_eq!(rows, steps + 1, "one row per step, step 0 included");
     let _ = std::fs::remove_dir_all(&d);
+}
+
+/// The rows of `out/history.csv` (without the header) and `out/stopped.json`.
+fn partial(out: &Path) -> (Vec<String>, serde_json::Value) {
+    let csv = std::fs::read_to_string(out.join("history.csv")).unwrap();
+    let rows = csv.lines().skip(1).map(String::from).collect();
+    let text = std::fs::read_to_string(out.join("stopped.json")).unwrap();
+    (rows, serde_json::from_str(&text).unwrap())
+}
+
+/// An unstable run (a fixed step 1.42x the stable one, allowed) stops at step 21 with exit 2:
+/// with --keep-partial its 21 rows (steps 0 to 20, every row whole, the last at the time
+/// stopped.json names) and stopped.json are in --out and no summary.json; without it nothing.
+/// A complete run into the same folder then removes stopped.json. SIGTERM with --keep-partial:
+/// exit 130, the rows so far kept and said so.
+#[test]
+fn keep_partial_keeps_the_rows_of_a_stopped_run_and_says_why() {
+    let d = dir("partial");
+    let s = scene(&d, "unstable", |t| {
+        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
+            .replace(
+                "  dt: {cfl: 0.8}",
+                "  dt: {fixed: 1.0e-6}\n  allow_unstable_dt: true\n  # was",
+            )
+            .replace("every: 1.0e-6", "every: 1.0e-9")
+    });
+    let out = d.join("kept");
+    let (scene_path, out_path) = (s.to_str().unwrap(), out.to_str().unwrap());
+    let (code, err) = run(&["simulate", scene_path, "--out", out_path, "--keep-partial"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("kept the partial output in"), "{err}");
+    let (rows, stopped) = partial(&out);
+    assert_eq!(rows.len(), 21, "{err}");
+    let width = rows[0].split(',').count();
+    assert!(rows.iter().all(|r| r.split(',').count() == width));
+    let last: f64 = rows[20].split(',').next().unwrap().parse().unwrap();
+    assert_eq!(stopped["last_row_time_s"].as_f64(), Some(last));
+    assert_eq!(stopped["history_rows"], 21);
+    assert!(
+        stopped["error"].as_str().unwrap().contains("unstable"),
+        "{stopped}"
+    );
+    assert!(!out.join("summary.json").exists());
+    assert!(leftovers(&d).is_empty(), "{:?}", leftovers(&d));
+    // Without the flag: nothing in --out.
+    let bare = d.join("bare");
+    let (code, _) = run(&["simulate", scene_path, "--out", bare.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(!bare.exists() && leftovers(&d).is_empty());
+    // A complete run into the kept folder replaces the partial output.
+    let fine = scene(&d, "fine", |t| {
+        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
+            .replace("end: 3.0e-3", "end: 1.0e-4")
+    });
+    let (code, err) = run(&[
+        "simulate",
+        fine.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.join("summary.json").exists() && !out.join("stopped.json").exists());
+
+    let out = d.join("interrupted");
+    let child = start_long_run_with(&d, &out, &["--keep-partial"]);
+    signal(&child, "TERM");
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("kept the partial output in"), "{err}");
+    let (rows, stopped) = partial(&out);
+    assert!(!rows.is_empty(), "{err}");
+    assert!(
+        stopped["error"].as_str().unwrap().contains("interrupted"),
+        "{stopped}"
+    );
+    assert!(!out.join("summary.json").exists() && leftovers(&d).is_empty());
 }

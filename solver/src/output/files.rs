@@ -19,7 +19,7 @@ use crate::time_loop::history::{History, HistorySink};
 use crate::time_loop::observer::{FieldFrame, Observer};
 use crate::time_loop::progress::{Progress, ProgressMode};
 
-pub use crate::output::out_dir::OUTPUT_FILES;
+pub use crate::output::out_dir::{OUTPUT_FILES, STOPPED_FILE};
 
 /// Writes the history as CSV: a header of column names carrying their units, then one row
 /// per output time; numbers in Rust's shortest round-trip form.
@@ -60,6 +60,11 @@ pub struct HistoryFile {
     pub columns: Vec<String>,
     /// Rows written so far.
     pub rows: u64,
+    /// The last row's time, s (NaN before the first).
+    pub last_time_s: f64,
+    /// Whether a run that stops on an error still writes its rows so far
+    /// ([`HistorySink::abandon`]).
+    pub keep_partial: bool,
 }
 
 impl HistoryFile {
@@ -73,6 +78,8 @@ impl HistoryFile {
             spill: None,
             columns: Vec::new(),
             rows: 0,
+            last_time_s: f64::NAN,
+            keep_partial: false,
         }
     }
 
@@ -110,6 +117,7 @@ impl HistorySink for HistoryFile {
                 .map_err(|e| Error::write(&self.path, e))?;
         }
         self.rows += 1;
+        self.last_time_s = row[0];
         Ok(())
     }
     fn finish(&mut self, balance: &BalanceMonitor) -> Result<()> {
@@ -119,6 +127,12 @@ impl HistorySink for HistoryFile {
         self.write_csv(balance)
             .map_err(|e| Error::write(&self.path, e))?;
         fs::remove_file(&self.spill_path).map_err(|e| Error::write(&self.spill_path, e))
+    }
+    fn abandon(&mut self, balance: &BalanceMonitor) -> Result<()> {
+        if self.keep_partial && self.spill.is_some() {
+            self.finish(balance)?;
+        }
+        Ok(())
     }
     fn holds_rows(&self) -> bool {
         false
@@ -175,6 +189,10 @@ pub struct RunOptions {
     pub keep_history: bool,
     /// Asked at every stop poll beside the signal flag (e.g. Python's signal handlers).
     pub stop: Option<StopHook>,
+    /// When a streamed run (`keep_history: false`) stops on an error or a stop request after
+    /// its loop began, publish what it wrote: `history.csv` up to its last row, the field
+    /// frames and `fields.pvd`, and `stopped.json` (why and when) instead of `summary.json`.
+    pub keep_partial: bool,
 }
 
 /// A caller's own stop request, polled with the signal flag: `true` stops the run.
@@ -194,6 +212,7 @@ impl Default for RunOptions {
             max_memory: None,
             force: false,
             keep_history: false,
+            keep_partial: false,
             stop: None,
         }
     }
@@ -274,6 +293,15 @@ pub fn simulate_scene_to_dir_with(
         publish(&staging, out_dir)?;
         Ok(outcome)
     });
+    let kept = result.is_err()
+        && staging.join(STOPPED_FILE).exists()
+        && publish(&staging, out_dir).is_ok();
+    if kept {
+        say(format!(
+            "kept the partial output in {} (history.csv up to the stop, {STOPPED_FILE}; no summary.json)",
+            out_dir.display()
+        ));
+    }
     if let Ok(Outcome { summary, .. }) = &result {
         if let Some(fallback) = summary.threads_fallback {
             say(fallback.note(summary.n_steps));
@@ -284,12 +312,16 @@ pub fn simulate_scene_to_dir_with(
         Error::Interrupted { step, time_s, .. } => Error::Interrupted {
             step,
             time_s,
-            cleanup: format!(
-                "; {} the staging folder {}; {} was left as it was",
-                if removed { "removed" } else { "no" },
-                staging.display(),
-                out_dir.display()
-            ),
+            cleanup: if kept {
+                format!("; kept the partial output in {}", out_dir.display())
+            } else {
+                format!(
+                    "; {} the staging folder {}; {} was left as it was",
+                    if removed { "removed" } else { "no" },
+                    staging.display(),
+                    out_dir.display()
+                )
+            },
         },
         other => other,
     })
@@ -323,16 +355,21 @@ fn run_into(
         })
     } else {
         let mut file = HistoryFile::new(&history_path);
-        simulate_into(scene, &mut observer, options.max_memory, &mut file).map(|(summary, mesh)| {
-            Outcome {
+        file.keep_partial = options.keep_partial;
+        let result = simulate_into(scene, &mut observer, options.max_memory, &mut file).map(
+            |(summary, mesh)| Outcome {
                 summary,
                 history: History {
-                    columns: file.columns,
+                    columns: file.columns.clone(),
                     values: Vec::new(),
                 },
                 mesh,
-            }
-        })
+            },
+        );
+        if let (Err(e), true) = (&result, history_path.exists()) {
+            write_stopped(e, &file, &observer.frames, staging)?;
+        }
+        result
     };
     observer.progress.finish();
     let outcome = outcome?;
@@ -341,6 +378,27 @@ fn run_into(
         write_pvd(&observer.frames, &staging.join("fields.pvd"))?;
     }
     Ok(outcome)
+}
+
+/// What a run that stopped before its end kept (`RunOptions::keep_partial`): `stopped.json`
+/// (the error, the rows written and the last row's time) and the frames' `fields.pvd`.
+fn write_stopped(
+    error: &Error,
+    history: &HistoryFile,
+    frames: &[(f64, String)],
+    staging: &Path,
+) -> Result<()> {
+    let stopped = serde_json::json!({
+        "error": error.to_string(),
+        "history_rows": history.rows,
+        "last_row_time_s": history.last_time_s,
+        "what": "the partial output of a run that stopped before its end: history.csv holds its rows up to the stop (the energy balance error divided by the largest energy so far), fields/ its frames; there is no summary.json",
+    });
+    write_json(&stopped, &staging.join(STOPPED_FILE))?;
+    if !frames.is_empty() {
+        write_pvd(frames, &staging.join("fields.pvd"))?;
+    }
+    Ok(())
 }
 
 /// Moves the staged files into `out_dir`, replacing earlier outputs of the same names.

@@ -9,7 +9,16 @@ use std::path::{Path, PathBuf};
 use crate::input::error::{Error, Result};
 
 /// Files `impact simulate` writes into its output folder.
-pub const OUTPUT_FILES: [&str; 4] = ["history.csv", "summary.json", "fields", "fields.pvd"];
+pub const OUTPUT_FILES: [&str; 5] = [
+    "history.csv",
+    "summary.json",
+    "fields",
+    "fields.pvd",
+    STOPPED_FILE,
+];
+
+/// What a run that stopped before its end kept beside its partial history (`--keep-partial`).
+pub const STOPPED_FILE: &str = "stopped.json";
 
 /// Refuses `out` when it is `/`, the home folder, a file, or a non-empty folder without any
 /// of an earlier run's [`OUTPUT_FILES`] (unless `force`).

@@ -29,6 +29,12 @@ pub trait HistorySink {
     fn row(&mut self, row: &[f64]) -> Result<()>;
     /// The run ended: every row's last value becomes `balance.ratio(imbalance)`.
     fn finish(&mut self, balance: &BalanceMonitor) -> Result<()>;
+    /// The run stopped on an error or a stop request after its rows so far: a sink that keeps
+    /// partial output finishes them as [`HistorySink::finish`] would (the balance divided by
+    /// the largest energy so far); by default nothing.
+    fn abandon(&mut self, _balance: &BalanceMonitor) -> Result<()> {
+        Ok(())
+    }
     /// Whether the rows are held in memory (counted in the run's memory estimate).
     fn holds_rows(&self) -> bool {
         true
@@ -339,10 +345,16 @@ impl<'s> Recorder<'s> {
         self.sink.row(row)
     }
 
+    /// The run stopped on an error after its rows so far: the sink keeps them or not
+    /// ([`HistorySink::abandon`]).
+    pub(crate) fn abandon(&mut self, balance: &BalanceMonitor) -> Result<()> {
+        self.sink.abandon(balance)
+    }
+
     /// The run stopped after step `n` at `t` (`at` its last sample): closes the open contact
     /// interval and the history, returns the totals.
     pub(crate) fn finish(
-        mut self,
+        &mut self,
         n: u64,
         stop: StopReason,
         at: &Sample,
@@ -361,7 +373,7 @@ impl<'s> Recorder<'s> {
             self.close_interval(at.t);
         }
         self.sink.finish(balance)?;
-        Ok(self.totals)
+        Ok(self.totals.clone())
     }
 
     fn close_interval(&mut self, t: f64) {

@@ -61,43 +61,53 @@ pub fn run<F: Formulation, M: ConstitutiveModel>(
     if scene.time.dt_update == DtUpdate::EveryStep {
         stepper.every_step = Some(EveryStep::new(dt / dt_critical, dt_plate, dt));
     }
-    let mut n: u64 = 0;
-    loop {
-        let t = stepper.time(n);
-        // 1: internal forces at u_n; the step from t_n; 2: the force on the plate at t_n.
-        let element_energy = stepper
-            .model
-            .internal_forces(&stepper.u, &mut stepper.f_int);
-        stepper.choose_step(n, t, clock.end_time)?;
-        let applied = stepper.applied(t);
-        recorder.contact(t, applied, stepper.previous_dt);
-        let stop = clock.stop(n, t, stepper.dt, recorder.separated_at());
-        // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
-        let energies = stepper.half_step(n, applied, element_energy);
-        let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
-        stepper.check_nose(n, t)?;
-        if geometry_check_due(n, stop.is_some()) {
-            stepper.check_inversion(n, t)?;
-            stepper.check_deformed_step(n, t, dt_plate)?;
+    let mut march = || -> Result<RunTotals> {
+        let mut n: u64 = 0;
+        loop {
+            let t = stepper.time(n);
+            // 1: internal forces at u_n; the step from t_n; 2: the force on the plate at t_n.
+            let element_energy = stepper
+                .model
+                .internal_forces(&stepper.u, &mut stepper.f_int);
+            stepper.choose_step(n, t, clock.end_time)?;
+            let applied = stepper.applied(t);
+            recorder.contact(t, applied, stepper.previous_dt);
+            let stop = clock.stop(n, t, stepper.dt, recorder.separated_at());
+            // 2-3: accelerations, velocities at n + 1/2; 4: energies at t_n.
+            let energies = stepper.half_step(n, applied, element_energy);
+            let (imbalance, balance_error) = stepper.check_balance(n, t, &energies)?;
+            stepper.check_nose(n, t)?;
+            if geometry_check_due(n, stop.is_some()) {
+                stepper.check_inversion(n, t)?;
+                stepper.check_deformed_step(n, t, dt_plate)?;
+            }
+            let at = stepper.sample(t, applied, &energies, imbalance);
+            recorder.sample(n, stepper.dt, stop.is_some(), &at, |p| stepper.probe(p))?;
+            watch.step(n, t, stop.is_some(), &stepper)?;
+            if let Some(reason) = stop {
+                let balance = stepper.balance;
+                let released = recorder.separated_at().filter(|_| applied == 0.0);
+                let wall = stepper.wall_totals(released, &energies);
+                let mut totals =
+                    recorder.finish(n, reason, &at, stepper.initial_energy, &balance)?;
+                totals.wall = wall;
+                totals.dt_range = stepper.every_step.as_ref().map(|e| e.range);
+                totals.max_temperature = stepper.model.max_temperature();
+                totals.max_penetration = stepper.surface.as_ref().map(|c| c.max_penetration);
+                return Ok(totals);
+            }
+            // u_{n+1}, then 5: the contact force at n + 1 and the impactor.
+            stepper.advance(n, t, applied, balance_error)?;
+            n += 1;
         }
-        let at = stepper.sample(t, applied, &energies, imbalance);
-        recorder.sample(n, stepper.dt, stop.is_some(), &at, |p| stepper.probe(p))?;
-        watch.step(n, t, stop.is_some(), &stepper)?;
-        if let Some(reason) = stop {
-            let balance = stepper.balance;
-            let released = recorder.separated_at().filter(|_| applied == 0.0);
-            let wall = stepper.wall_totals(released, &energies);
-            let mut totals = recorder.finish(n, reason, &at, stepper.initial_energy, &balance)?;
-            totals.wall = wall;
-            totals.dt_range = stepper.every_step.as_ref().map(|e| e.range);
-            totals.max_temperature = stepper.model.max_temperature();
-            totals.max_penetration = stepper.surface.as_ref().map(|c| c.max_penetration);
-            return Ok(totals);
-        }
-        // u_{n+1}, then 5: the contact force at n + 1 and the impactor.
-        stepper.advance(n, t, applied, balance_error)?;
-        n += 1;
+    };
+    let result = march();
+    if result.is_err() {
+        // The rows so far, for a caller that keeps partial output (`--keep-partial`); the
+        // run's own error is the one to report, so a failure to keep them is not.
+        let _ = recorder.abandon(&stepper.balance);
     }
+    result
 }
 
 /// The time step of the scene's `time.dt` choice, s: a fraction of `dt_critical`, or a fixed
