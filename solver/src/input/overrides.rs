@@ -24,18 +24,24 @@ const ONE_OF: [&str; 5] = [
 const BESIDE_THE_VARIANT: [(&str, &str); 2] = [("time.dt", "estimate"), ("time.dt", "update")];
 
 /// Sets `value` at the dotted `key` of the YAML `tree`, creating the maps on the way
-/// (the scene's parser then refuses keys it does not know).
+/// (the scene's parser then refuses keys it does not know). A word on the way that the key
+/// goes on through by its own name (`contact: surface` and the key
+/// `load.impactor.contact.surface.enforcement`) is the short form of the map keyed by it
+/// (`contact: {surface: ~}`, the schema's forms) and becomes that map.
 pub fn set(tree: &mut Value, key: &str, value: &Value) -> Result<(), String> {
     if key.is_empty() || key.split('.').any(str::is_empty) {
         return Err("an override key is a dotted path of the scene, e.g. time.dt.cfl".into());
     }
+    let parts: Vec<&str> = key.split('.').collect();
     let mut node = tree;
     let mut path = String::new();
-    for part in key.split('.') {
+    for (i, part) in parts.iter().copied().enumerate() {
         let one_of = ONE_OF.contains(&path.as_str());
-        let map = as_map(node, one_of).ok_or_else(|| {
-            format!("`{path}` holds a value, not a map: cannot set `{key}` inside it")
-        })?;
+        if node.as_str() == Some(part) && i + 1 < parts.len() {
+            *node = Value::Object(Map::from_iter([(part.to_string(), Value::Null)]));
+        }
+        let held = node.clone();
+        let map = as_map(node, one_of).ok_or_else(|| how_to_write(&path, &held, &parts, value))?;
         if one_of && !map.contains_key(part) {
             let beside = |k: &str| BESIDE_THE_VARIANT.contains(&(path.as_str(), k));
             if !beside(part) {
@@ -52,6 +58,26 @@ pub fn set(tree: &mut Value, key: &str, value: &Value) -> Result<(), String> {
     }
     *node = value.clone();
     Ok(())
+}
+
+/// The refusal of `parts` (= `value`) inside the plain value `held` at `path`: the override
+/// that sets `path` whole.
+fn how_to_write(path: &str, held: &Value, parts: &[&str], value: &Value) -> String {
+    let depth = if path.is_empty() {
+        0
+    } else {
+        path.split('.').count()
+    };
+    let whole =
+        (parts[depth..].iter().rev()).fold(value.clone(), |inner, part| json_map(part, inner));
+    format!(
+        "`{path}` is {held} in this scene, which holds no keys: to set `{}`, set `{path}` whole, e.g. `{path}: {whole}`",
+        parts.join(".")
+    )
+}
+
+fn json_map(key: &str, value: Value) -> Value {
+    Value::Object(Map::from_iter([(key.to_string(), value)]))
 }
 
 /// The node as a map; an absent node (null), or a plain value where a variant is chosen
@@ -83,5 +109,28 @@ mod tests {
         );
         assert!(set(&mut t, "mesh.nx.more", &json!(1)).is_err());
         assert!(set(&mut t, "mesh..nx", &json!(1)).is_err());
+    }
+
+    /// A word the key goes on through by its name becomes its map; through another word the
+    /// refusal says how to set the whole key.
+    #[test]
+    fn a_word_that_is_short_for_its_map_opens() {
+        let mut t = json!({"load": {"impactor": {"contact": "surface", "mass": 1.0}}});
+        let key = "load.impactor.contact.surface.enforcement";
+        set(&mut t, key, &json!("penalty")).unwrap();
+        assert_eq!(
+            t["load"]["impactor"]["contact"],
+            json!({"surface": {"enforcement": "penalty"}})
+        );
+        let mut t = json!({"load": {"impactor": {"contact": "nodal"}}});
+        let e = set(&mut t, key, &json!("penalty")).unwrap_err();
+        assert!(
+            e.contains("`load.impactor.contact` is \"nodal\" in this scene")
+                && e.contains(r#"`load.impactor.contact: {"surface":{"enforcement":"penalty"}}`"#),
+            "{e}"
+        );
+        // The word itself can still be replaced.
+        set(&mut t, "load.impactor.contact", &json!("surface")).unwrap();
+        assert_eq!(t["load"]["impactor"]["contact"], json!("surface"));
     }
 }
