@@ -59,12 +59,15 @@ class RateDependence:
 
     # -- thermal factor ---------------------------------------------------------------------
     def theta(self) -> np.ndarray:
-        """Theta = 1 - T*^m, T* = clamp((T - T0) / (Tm - T0), 0, 1), from the current (start of
-        step) temperature; 1 without heating."""
+        """Theta = 1 - T*^m, T* = clamp((T - Tr) / (Tm - Tr), 0, 1) with T = T0 + dT, from the
+        current (start of step) temperature; 1 without heating. Tr, the reference
+        temperature, is T0 unless the scene gives it (a preheated shot)."""
         if self.thermal is None:
             return np.ones_like(self.dT)
         th = self.thermal
-        ts = np.clip(self.dT / (th.melting_temperature - th.initial_temperature), 0.0, 1.0)
+        tr = th.initial_temperature if th.reference_temperature is None else th.reference_temperature
+        rise = self.dT if tr == th.initial_temperature else self.dT + (th.initial_temperature - tr)
+        ts = np.clip(rise / (th.melting_temperature - tr), 0.0, 1.0)
         return 1.0 - np.power(ts, self.law.m)
 
     def temperature(self) -> np.ndarray:

@@ -31,6 +31,7 @@ class Thermal:
     melting_temperature: float    # Tm, K (> T0)
     specific_heat: float          # c, J/(kg K)
     taylor_quinney: float         # beta in [0, 1]
+    reference_temperature: float = None   # Tr of T*, K (<= T0); None: T0
 
 
 @dataclass
@@ -235,13 +236,14 @@ def _parse_hardening(pl: dict, plast: Plasticity, E: float, sy0: float) -> None:
 
 CS_KEYS = {"D", "q"}
 JC_KEYS = {"A", "B", "n", "C", "reference_rate", "m", "thermal"}
-THERMAL_KEYS = {"initial_temperature", "melting_temperature", "specific_heat", "taylor_quinney"}
+THERMAL_KEYS = {"initial_temperature", "melting_temperature", "specific_heat", "taylor_quinney",
+                "reference_temperature"}
 
 
 def _parse_rate(rate) -> RateLaw:
     """material.plasticity.rate: {cowper_symonds: {D, q}} | {johnson_cook: {A, B, n, C,
     reference_rate, m, thermal: {initial_temperature, melting_temperature, specific_heat,
-    taylor_quinney}}} (ALGORITHM.md section 3b)."""
+    taylor_quinney, reference_temperature}}} (ALGORITHM.md section 3b)."""
     where = "material.plasticity.rate"
     kind, val = _one_of(rate, where)
     if not isinstance(val, dict):
@@ -277,8 +279,14 @@ def _parse_rate(rate) -> RateLaw:
             raise SceneError(f"{wt}.taylor_quinney must be in [0, 1], got {beta}")
         if law.m is None:
             raise SceneError(f"{w}.m (thermal softening exponent) is needed with thermal")
+        tr = t0
+        if th.get("reference_temperature") is not None:
+            tr = _pos(th["reference_temperature"], f"{wt}.reference_temperature")
+            if tr > t0:
+                raise SceneError(f"{wt}.reference_temperature ({tr}) must not be above "
+                                 f"initial_temperature ({t0})")
         law.thermal = Thermal(t0, tm, _pos(_req(th, "specific_heat", wt), f"{wt}.specific_heat"),
-                              beta)
+                              beta, tr)
     return law
 
 

@@ -399,6 +399,14 @@ impl Finder<'_> {
                 shown(t.melting_temperature)
             ));
         }
+        let reference = format!("{JC}.thermal.reference_temperature");
+        if let Some(t) = thermal.filter(|t| t.reference_temperature < TEMPERATURE_MIN) {
+            if self.given(&reference) {
+                self.warn(&reference, shown(t.reference_temperature), format!(
+                    "below {TEMPERATURE_MIN} K: temperatures are in kelvin, and this looks like degrees Celsius (20 C is 293.15 K)"
+                ));
+            }
+        }
     }
 
     /// Any other number beyond [`EXTREME`] in magnitude.

@@ -523,13 +523,21 @@ pub struct JohnsonCookFile {
 }
 
 /// `thermal: {initial_temperature: K, melting_temperature: K, specific_heat: J/(kg K),
-/// taylor_quinney: -}`.
+/// taylor_quinney: -, reference_temperature: K}`.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ThermalFile {
-    /// Initial temperature T0, also the reference temperature of `T*`, K; > 0.
+    /// Initial temperature T0, K; > 0. Also Johnson-Cook's reference temperature of `T*`
+    /// unless `reference_temperature` is given.
     #[schemars(with = "f64")]
     pub initial_temperature: Num,
+    /// Johnson-Cook's reference temperature Tr of `T* = (T - Tr) / (Tm - Tr)`, K; at most
+    /// `initial_temperature`. The temperature of the tests the constants were fitted to (room
+    /// temperature, usually). Optional, default `initial_temperature` (a preheated shot starts
+    /// softened, `T*` above 0; a shot colder than the fit is not modelled).
+    #[serde(default)]
+    #[schemars(with = "Option<f64>")]
+    pub reference_temperature: Option<Num>,
     /// Melting temperature Tm, K; above `initial_temperature`.
     #[schemars(with = "f64")]
     pub melting_temperature: Num,

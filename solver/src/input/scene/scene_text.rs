@@ -114,6 +114,9 @@ fn rate_value(r: &RateLaw, p: &Plasticity) -> Value {
                 jc["thermal"] = json!({"initial_temperature": t.initial_temperature,
                     "melting_temperature": t.melting_temperature,
                     "specific_heat": t.specific_heat, "taylor_quinney": t.taylor_quinney});
+                if t.reference_temperature != t.initial_temperature {
+                    jc["thermal"]["reference_temperature"] = json!(t.reference_temperature);
+                }
             }
             json!({"johnson_cook": jc})
         }

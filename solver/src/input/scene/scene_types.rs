@@ -280,8 +280,11 @@ pub enum RateLaw {
 /// Adiabatic heating and Johnson-Cook's thermal softening.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Thermal {
-    /// T0, also the reference temperature of `T*`, K.
+    /// T0, the material's temperature before the impact, K.
     pub initial_temperature: f64,
+    /// Tr, Johnson-Cook's reference temperature of `T*` (the temperature of the tests the
+    /// constants were fitted to), K; `initial_temperature` unless the scene gives it.
+    pub reference_temperature: f64,
     /// Tm, K.
     pub melting_temperature: f64,
     /// c, J/(kg K).
@@ -318,6 +321,7 @@ pub fn johnson_cook_42crmo4() -> (PowerCurve, RateLaw) {
             reference_rate: 1.0,
             thermal: Some(Thermal {
                 initial_temperature: 293.15,
+                reference_temperature: 293.15,
                 melting_temperature: 1813.15,
                 specific_heat: 460.0,
                 taylor_quinney: 0.9,

@@ -226,6 +226,21 @@ impl Validator<'_> {
                 format!("must be above initial_temperature = {} K", shown(initial)),
             );
         }
+        let reference = match &th.reference_temperature {
+            None => initial,
+            Some(r) => {
+                let reference = self.check(r, &g("reference_temperature"), POSITIVE)?;
+                if reference > initial {
+                    return self.fail(
+                        r,
+                        &g("reference_temperature"),
+                        shown(reference),
+                        format!("must not be above initial_temperature = {} K: Johnson-Cook's T* = (T - Tr) / (Tm - Tr) is used from the reference temperature up (a shot colder than the tests of the fit is not modelled)", shown(initial)),
+                    );
+                }
+                reference
+            }
+        };
         let Some(m) = m else {
             return self.fail(
                 t,
@@ -236,6 +251,7 @@ impl Validator<'_> {
         };
         Ok(Thermal {
             initial_temperature: initial,
+            reference_temperature: reference,
             melting_temperature: melting,
             specific_heat: self.check(&th.specific_heat, &g("specific_heat"), POSITIVE)?,
             taylor_quinney: self.check(&th.taylor_quinney, &g("taylor_quinney"), FRACTION)?,

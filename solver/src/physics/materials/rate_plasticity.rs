@@ -156,7 +156,8 @@ impl ViscoPlastic {
         })
     }
 
-    /// Johnson-Cook's `1 - T*^m` per lane of the temperature rise `heating` (K); 1 without
+    /// Johnson-Cook's `1 - T*^m` per lane of the temperature rise `heating` (K) above the
+    /// initial temperature, `T* = (T0 + heating - Tr) / (Tm - Tr)` clamped to [0, 1]; 1 without
     /// heating.
     #[inline(always)]
     fn softening<R: Real>(&self, heating: R) -> R {
@@ -164,12 +165,21 @@ impl ViscoPlastic {
             None => R::splat(1.0),
             Some(&Thermal {
                 initial_temperature,
+                reference_temperature,
                 melting_temperature,
                 softening_exponent,
                 ..
             }) => {
-                let range = melting_temperature - initial_temperature;
-                let homologous = (heating / range).map_lanes(|t| t.clamp(0.0, 1.0));
+                let range = melting_temperature - reference_temperature;
+                // Above the reference temperature before any heating (a preheated shot): T*
+                // starts there. Without it the rise alone, as it always was (the same bits).
+                let above = initial_temperature - reference_temperature;
+                let rise = if above == 0.0 {
+                    heating
+                } else {
+                    heating + R::splat(above)
+                };
+                let homologous = (rise / range).map_lanes(|t| t.clamp(0.0, 1.0));
                 R::splat(1.0) - pow(homologous, softening_exponent)
             }
         }
@@ -529,8 +539,16 @@ impl ConstitutiveModel for ViscoPlastic {
         &self.elastic
     }
 
+    /// The static flow stress before any plastic strain, at the initial temperature (below
+    /// the unsoftened one for a preheated shot, `initial_temperature > reference_temperature`).
     fn virgin_yield_stress(&self) -> Option<f64> {
-        Some(self.curve.stress(0.0))
+        let unsoftened = self.curve.stress(0.0);
+        Some(match self.law.thermal() {
+            Some(t) if t.initial_temperature != t.reference_temperature => {
+                unsoftened * self.softening(0.0)
+            }
+            _ => unsoftened,
+        })
     }
 
     /// As [`VonMises`]: heating only comes with plastic strain.
@@ -671,6 +689,7 @@ mod tests {
         // Heating: the temperature rise is beta / (rho c) times the plastic work density.
         let thermal = Thermal {
             initial_temperature: 293.15,
+            reference_temperature: 293.15,
             melting_temperature: 1813.15,
             specific_heat: 473.0,
             taylor_quinney: 0.9,
@@ -696,6 +715,49 @@ mod tests {
         );
         assert!(state.heating > 1.0, "{}", state.heating);
         assert_relative_eq!(m.temperature(&state).unwrap(), 293.15 + state.heating);
+    }
+
+    /// A preheated point (60 K above the reference temperature, `T*_0 = 60 / 150 = 0.4`,
+    /// m = 1) yields at `A (1 - 0.4)`: its elastic screen's stress and the first plastic step
+    /// of a trial stress between that and A. Fails for a screen at the unsoftened A, or a
+    /// softening that reads the rise alone (no yield below A at the start).
+    #[test]
+    fn a_preheated_point_yields_at_its_softened_stress() {
+        let a = 250e6;
+        let hot = |reference_temperature: f64| {
+            let thermal = Thermal {
+                initial_temperature: 353.15,
+                reference_temperature,
+                melting_temperature: 443.15,
+                specific_heat: 460.0,
+                taylor_quinney: 0.9,
+                softening_exponent: 1.0,
+            };
+            let law = RateLaw::JohnsonCook {
+                c: 0.0,
+                reference_rate: 1.0,
+                thermal: Some(thermal),
+            };
+            let power = Hardening::Power {
+                coefficient: 0.0,
+                exponent: 1.0,
+            };
+            steel(power, a, law, 1e-6)
+        };
+        let m = hot(293.15);
+        assert_relative_eq!(
+            m.virgin_yield_stress().unwrap(),
+            0.6 * a,
+            max_relative = 1e-15
+        );
+        assert_eq!(hot(353.15).virgin_yield_stress(), Some(a));
+        // Uniaxial strain whose elastic von Mises stress is 0.8 A (2 mu e = q): plastic now.
+        let mu = m.elastic.mu;
+        let mut state = ViscoState::default();
+        let r = update(&m, &[0.8 * a / (2.0 * mu), 0.0, 0.0, 0.0], &mut state);
+        assert!(state.plastic.eqps > 0.0, "{state:?}");
+        let q = super::super::material::von_mises(&r.stress);
+        assert_relative_eq!(q, 0.6 * a, max_relative = 1e-9);
     }
 
     /// Johnson-Cook's static curve `a + b k^n` and its slope `n (b k^n) / k` (the Newton

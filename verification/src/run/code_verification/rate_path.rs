@@ -20,14 +20,16 @@
 //!
 //! With `thermal_m` (Johnson-Cook's `m`, 1 or 2) the law heats adiabatically (solver/ALGORITHM.md
 //! 3b: `rho c dT = beta q dk`) and softens, `q = A R Theta`, `Theta = 1 - T*^m`,
-//! `T* = (T - T0) / (Tm - T0)`, `R = 1 + C ln(kdot / rate0)` at the steady rate. Along the
-//! flow `dT*/dk = (1 - T*^m) / k_c` with `k_c = rho c (Tm - T0) / (beta A R)`, so, from `T* = 0`:
-//! - `m = 1`: `T* = 1 - exp(-k / k_c)`, `q = A R exp(-k / k_c)`;
-//! - `m = 2`: `T* = tanh(k / k_c)`, `q = A R / cosh^2(k / k_c)`;
+//! `T* = (T - Tr) / (Tm - Tr)`, `R = 1 + C ln(kdot / rate0)` at the steady rate. Along the
+//! flow `dT*/dk = (1 - T*^m) / k_c` with `k_c = rho c (Tm - Tr) / (beta A R)`, so, from the
+//! initial `T*_0 = (T0 - Tr) / (Tm - Tr)` (0 unless `preheat_K` starts the block above the
+//! reference temperature Tr = 293.15 K, as the hot shots of Taylor tests do):
+//! - `m = 1`: `T* = 1 - (1 - T*_0) exp(-k / k_c)`, `q = A R (1 - T*_0) exp(-k / k_c)`;
+//! - `m = 2`: `T* = tanh(atanh(T*_0) + k / k_c)`, `q = A R (1 - T*^2)`;
 //!
 //! each read at the point's own equivalent plastic strain `k`. The material is fictitious
-//! (`c = 46 J/(kg K)`, `Tm - T0 = 150 K`, `beta = 0.9`: `k_c` about 0.24) so that the
-//! heating softens the flow stress eightfold within the path. What the closed form leaves out
+//! (`c = 46 J/(kg K)`, `Tm - Tr = 150 K`, `beta = 0.9`: `k_c` about 0.24) so that the
+//! heating softens the flow stress six- to tenfold within the path. What the closed form leaves out
 //! is the step's: the softening uses the temperature at the start of the step (section 3b),
 //! `dk / k_c` per step, and the steady rate is the path's only up to the elastic strain the
 //! softening releases (`q' / 3 mu`, a few 1e-3 of the rate, `C` times that in `R`).
@@ -114,7 +116,8 @@ fn thermal(p: &Params) -> Result<Option<Thermal>, String> {
             format!("param thermal_m: {m}, expected 1 or 2 (the exponents with a closed form)")
         })?;
     Ok(Some(Thermal {
-        initial_temperature: 293.15,
+        initial_temperature: 293.15 + param(p, "preheat_K", 0.0)?,
+        reference_temperature: 293.15,
         melting_temperature: 443.15,
         specific_heat: 46.0,
         taylor_quinney: 0.9,
@@ -139,17 +142,19 @@ fn adiabatic_flow(law: &RateLaw, q0: f64, rho: f64, k: f64) -> (f64, Option<f64>
     let Some(t) = law.thermal() else {
         return (q0, None);
     };
-    let range = t.melting_temperature - t.initial_temperature;
+    let range = t.melting_temperature - t.reference_temperature;
+    let start = (t.initial_temperature - t.reference_temperature) / range;
     let k_c = rho * t.specific_heat * range / (t.taylor_quinney * q0);
     let x = k / k_c;
-    let (homologous, softening) = if t.softening_exponent == 1.0 {
-        (1.0 - (-x).exp(), (-x).exp())
+    let homologous = if t.softening_exponent == 1.0 {
+        1.0 - (1.0 - start) * (-x).exp()
     } else {
-        (x.tanh(), 1.0 / x.cosh().powi(2))
+        (start.atanh() + x).tanh()
     };
+    let softening = 1.0 - homologous.powf(t.softening_exponent);
     (
         q0 * softening,
-        Some(t.initial_temperature + range * homologous),
+        Some(t.reference_temperature + range * homologous),
     )
 }
 
@@ -246,6 +251,45 @@ fn march<F: Formulation>(
     Run { rows, spread }
 }
 
+/// The model's law: `law`, or the wrong one a negative control names in `model_law`
+/// (`rate-independent`, `unheated`, `no-preheat-softening`).
+fn model_law(p: &Params, law: RateLaw) -> RateLaw {
+    match p.get("model_law") {
+        // D = 1e12 1/s: an overstress of (kdot / D)^(1/5) < 0.6 %, nearly rate-independent.
+        Some(Value::String(s)) if s == "rate-independent" => {
+            RateLaw::CowperSymonds { d: 1e12, q: 5.0 }
+        }
+        // The same law without its heating: a flow stress that ignores the temperature.
+        Some(Value::String(s)) if s == "unheated" => match law {
+            RateLaw::JohnsonCook {
+                c, reference_rate, ..
+            } => RateLaw::JohnsonCook {
+                c,
+                reference_rate,
+                thermal: None,
+            },
+            other => other,
+        },
+        // The preheat read as the reference temperature (T* from the rise alone).
+        Some(Value::String(s)) if s == "no-preheat-softening" => match law {
+            RateLaw::JohnsonCook {
+                c,
+                reference_rate,
+                thermal: Some(t),
+            } => RateLaw::JohnsonCook {
+                c,
+                reference_rate,
+                thermal: Some(Thermal {
+                    reference_temperature: t.initial_temperature,
+                    ..t
+                }),
+            },
+            other => other,
+        },
+        _ => law,
+    }
+}
+
 pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     let law = law(p)?;
     let path = match p
@@ -264,24 +308,7 @@ pub fn rate_strain_path(p: &Params) -> Result<RunData, String> {
     let sigma0 = param(p, "yield_stress", 250e6)?;
     // The model's yield stress and law (a negative control may set a wrong one).
     let model_sigma0 = param(p, "model_yield_stress", sigma0)?;
-    let model_law = match p.get("model_law") {
-        // D = 1e12 1/s: an overstress of (kdot / D)^(1/5) < 0.6 %, nearly rate-independent.
-        Some(Value::String(s)) if s == "rate-independent" => {
-            RateLaw::CowperSymonds { d: 1e12, q: 5.0 }
-        }
-        // The same law without its heating: a flow stress that ignores the temperature.
-        Some(Value::String(s)) if s == "unheated" => match law {
-            RateLaw::JohnsonCook {
-                c, reference_rate, ..
-            } => RateLaw::JohnsonCook {
-                c,
-                reference_rate,
-                thermal: None,
-            },
-            other => other,
-        },
-        _ => law,
-    };
+    let model_law = model_law(p, law);
     let rates = param_numbers(p, "rates", &[1.0, 10.0, 100.0])?;
     let mu = Elastic::new(STEEL.0, STEEL.1).mu;
     let yield_strain = match path {
@@ -435,6 +462,15 @@ mod tests {
             // (the closed form follows thermal_m: compare the two runs' stresses instead)
             let apart = exponent["flow_stress_r1000_Pa"] / right["flow_stress_r1000_Pa"] - 1.0;
             assert!(apart.abs() > 0.4, "{m}: {apart}");
+            // Preheated 60 K above the reference (T*_0 = 0.4): within the case's 6e-3; the
+            // preheat ignored by the softening misses by 30 % and more.
+            let hot = run(&[("preheat_K", Value::from(60.0))]);
+            assert!(stress(&hot).abs() < 6e-3, "{m}: {hot:?}");
+            let cold = run(&[
+                ("preheat_K", Value::from(60.0)),
+                ("model_law", Value::from("no-preheat-softening")),
+            ]);
+            assert!(stress(&cold).abs() > 0.3, "{m}: {}", stress(&cold));
         }
     }
 }
