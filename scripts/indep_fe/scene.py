@@ -279,7 +279,7 @@ def _parse_rate(rate) -> RateLaw:
             raise SceneError(f"{wt}.taylor_quinney must be in [0, 1], got {beta}")
         if law.m is None:
             raise SceneError(f"{w}.m (thermal softening exponent) is needed with thermal")
-        tr = t0
+        tr = None   # absent: T0 (rate.py)
         if th.get("reference_temperature") is not None:
             tr = _pos(th["reference_temperature"], f"{wt}.reference_temperature")
             if tr > t0:

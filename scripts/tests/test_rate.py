@@ -24,7 +24,7 @@ import pytest
 from scipy.optimize import brentq
 
 from indep_fe.material import MaterialModel, lame, von_mises
-from indep_fe.rate import bracketed_root
+from indep_fe.rate import RateDependence, bracketed_root
 from indep_fe.scene import Material, Plasticity, RateLaw, SceneError, Thermal
 
 E, NU, RHO = 207e9, 0.3, 7850.0
@@ -181,6 +181,26 @@ def test_scene_rate_keys():
     for pl, msg in bad:
         with pytest.raises(SceneError, match=msg):
             scene(**{"material.plasticity": pl})
+
+
+def test_a_preheated_point_starts_softened():
+    """thermal.reference_temperature (section 3b): T* = (T0 + dT - Tr) / (Tm - Tr), so a point
+    60 K above Tr with m = 1 starts at Theta = 1 - 60 / 150 = 0.6; absent, Tr is T0 (Theta 1);
+    above T0 it is refused."""
+    from helpers import scene
+    jc = {"A": 250e6, "B": 0.0, "n": 1.0, "C": 0.0, "reference_rate": 1.0, "m": 1.0,
+          "thermal": {"initial_temperature": 353.15, "melting_temperature": 443.15,
+                      "specific_heat": 460.0, "taylor_quinney": 0.9}}
+    theta = []
+    for tr in (None, 293.15):
+        th = dict(jc["thermal"], **({} if tr is None else {"reference_temperature": tr}))
+        law = scene(**{"material.plasticity": {"rate": {"johnson_cook": {**jc, "thermal": th}}}}
+                    ).material.plasticity.rate
+        theta.append(RateDependence(law, None, 1.0, 1e-6, 7850.0, 1).theta()[0])
+    assert theta[0] == 1.0 and theta[1] == pytest.approx(0.6, rel=1e-15)
+    hot = dict(jc["thermal"], reference_temperature=400.0)
+    with pytest.raises(SceneError, match="must not be above initial_temperature"):
+        scene(**{"material.plasticity": {"rate": {"johnson_cook": {**jc, "thermal": hot}}}})
 
 
 def test_simulation_outputs_with_rate_laws():
