@@ -366,7 +366,7 @@ fn run_into(
                 mesh,
             },
         );
-        if let (Err(e), true) = (&result, history_path.exists()) {
+        if let (Err(e), true) = (&result, options.keep_partial && history_path.exists()) {
             write_stopped(e, &file, &observer.frames, staging)?;
         }
         result
