@@ -26,6 +26,7 @@
 
 use crate::definition::check::{CheckResult, Status};
 use crate::definition::run_data::RunData;
+use impact_solver::energy::Energies;
 use serde_json::Value;
 
 use super::invariant_row::row;
@@ -38,15 +39,15 @@ pub const END_VALUES: [&str; 3] = [
     "scene_time_limit_s",
 ];
 
-/// The summary's energy terms and their history columns.
-const ENERGY_COLUMNS: [(&str, &str); 7] = [
-    ("plate_kinetic", "plate_kinetic_J"),
-    ("impactor_kinetic", "impactor_kinetic_J"),
-    ("strain", "strain_energy_J"),
-    ("plastic_work", "plastic_work_J"),
-    ("hourglass", "hourglass_energy_J"),
-    ("contact", "contact_energy_J"),
-    ("external_work", "external_work_J"),
+/// The summary's energy terms, in the order of their history columns (`Energies::COLUMNS`).
+const ENERGY_TERMS: [&str; 7] = [
+    "plate_kinetic",
+    "impactor_kinetic",
+    "strain",
+    "plastic_work",
+    "hourglass",
+    "contact",
+    "external_work",
 ];
 
 /// One summary key against the value its history gives.
@@ -148,10 +149,12 @@ fn start_and_end(s: &Value, h: &impact_solver::History) -> Option<Vec<KeyPair>> 
         s.get("final_time_s")?.as_f64(),
         h.column("time_s")?.last().copied(),
     )?];
-    for (key, first) in [("initial_energy_J", true), ("final_energy_J", false)] {
-        for (term, column) in ENERGY_COLUMNS {
-            let c = h.column(column)?;
-            let row = if first { c.first() } else { c.last() };
+    for (term, column) in ENERGY_TERMS.into_iter().zip(Energies::COLUMNS) {
+        let c = h.column(column)?;
+        for (key, row) in [
+            ("initial_energy_J", c.first()),
+            ("final_energy_J", c.last()),
+        ] {
             let summary = s.get(key)?.get(term)?.as_f64();
             out.push(pair(format!("{key}.{term}"), summary, row.copied())?);
         }
