@@ -308,7 +308,16 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
         Err(c) => return c,
     };
     let (cases, errors) = impact_verification::definition::case::load_cases(&repo.cases_dir());
-    let findings = impact_verification::definition::lint::lint(&repo, &cases);
+    let mut findings: Vec<String> = impact_verification::definition::lint::lint(&repo, &cases)
+        .iter()
+        .map(ToString::to_string)
+        .collect();
+    // Every scene loads with its overrides (the reader's own message, file:line:col).
+    findings.extend(
+        cases
+            .iter()
+            .flat_map(impact_verification::run::jobs::scene_problems),
+    );
     for e in &errors {
         eprintln!("error: {e}");
     }

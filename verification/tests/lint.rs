@@ -21,6 +21,15 @@ fn the_repository_cases_are_lint_clean() {
     let findings = lint(&repo, &cases);
     let text: Vec<String> = findings.iter().map(|f| f.to_string()).collect();
     assert!(findings.is_empty(), "lint findings:\n{}", text.join("\n"));
+    let refused: Vec<String> = cases
+        .iter()
+        .flat_map(impact_verification::jobs::scene_problems)
+        .collect();
+    assert!(
+        refused.is_empty(),
+        "scenes refused:\n{}",
+        refused.join("\n")
+    );
     let suites: std::collections::BTreeSet<&str> = cases.iter().map(|c| c.suite.as_str()).collect();
     for s in [
         "patch",
@@ -295,4 +304,48 @@ fn an_override_the_scene_rules_refuse_is_refused_with_the_solvers_message() {
         scene.mesh.element,
         impact_solver::scene::ElementKind::Q4OnePoint
     );
+}
+
+/// `impact lint` loads every scene with its overrides before anything runs: each refused
+/// scene is named (not only the first), and a wrong model's overrides on top are checked too
+/// (reference: the solver's rule for `mesh.ny`, "must be an even integer").
+#[test]
+fn lint_names_every_scene_and_wrong_model_the_scene_reader_refuses() {
+    let scene = include_str!("../scenes/example-elastic.yaml");
+    let with = |scenes: &str, wrong: &str| {
+        GOOD.replace(
+            "  law: {builtin: hertz-law}\n",
+            &format!("  law: {{builtin: hertz-law}}\n{scenes}"),
+        ) + wrong
+    };
+    let problems = |yaml: &str| {
+        let root = scratch(yaml, true);
+        let dir = root.join("verification/cases/suite/case");
+        std::fs::write(dir.join("scene.yaml"), scene).unwrap();
+        let (cases, errors) = load_cases(&root.join("verification/cases"));
+        assert!(errors.is_empty(), "{errors:?}");
+        let p = impact_verification::jobs::scene_problems(&cases[0]);
+        let _ = std::fs::remove_dir_all(root);
+        p
+    };
+    let two_bad = with(
+        "  a: {file: scene.yaml, set: {mesh.ny: 27}}\n  b: {file: scene.yaml, set: {time.dt.cfl: 1.5}}\n",
+        "",
+    );
+    let p = problems(&two_bad);
+    assert_eq!(p.len(), 2, "{p:#?}");
+    assert!(
+        p[0].contains("override mesh.ny = 27") && p[0].contains("even integer"),
+        "{p:#?}"
+    );
+    assert!(p[1].contains("override time.dt.cfl = 1.5"), "{p:#?}");
+    let wrong = with(
+        "  a: {file: scene.yaml, set: {mesh.ny: 8}}\n",
+        "wrong_models:\n  odd: {title: an odd mesh, set: {mesh.ny: 9}, scenes: [a]}\n",
+    );
+    let p = problems(&wrong);
+    assert_eq!(p.len(), 1, "{p:#?}");
+    assert!(p[0].contains("mesh.ny = 9"), "{p:#?}");
+    let good = with("  a: {file: scene.yaml, set: {mesh.ny: 8}}\n", "");
+    assert_eq!(problems(&good), Vec::<String>::new());
 }
