@@ -40,8 +40,18 @@ pub fn set(tree: &mut Value, key: &str, value: &Value) -> Result<(), String> {
         if node.as_str() == Some(part) && i + 1 < parts.len() {
             *node = Value::Object(Map::from_iter([(part.to_string(), Value::Null)]));
         }
-        let held = node.clone();
-        let map = as_map(node, one_of).ok_or_else(|| how_to_write(&path, &held, &parts, value))?;
+        // An absent node (null), or a plain value where a variant is chosen (`time.end: 0.003`
+        // when `time.end.after_contact` is set), becomes an empty map; another plain value
+        // where the key goes on is refused (no copy of the tree is made on the way).
+        if !(node.is_null() || node.is_object() || one_of) {
+            return Err(how_to_write(&path, node, &parts, value));
+        }
+        if !node.is_object() {
+            *node = Value::Object(Map::new());
+        }
+        let Value::Object(map) = node else {
+            return Err(format!("`{path}` could not be opened as a map"));
+        };
         if one_of && !map.contains_key(part) {
             let beside = |k: &str| BESIDE_THE_VARIANT.contains(&(path.as_str(), k));
             if !beside(part) {
@@ -80,14 +90,6 @@ fn json_map(key: &str, value: Value) -> Value {
     Value::Object(Map::from_iter([(key.to_string(), value)]))
 }
 
-/// The node as a map; an absent node (null), or a plain value where a variant is chosen
-/// (`time.end: 0.003` when `time.end.after_contact` is set), becomes an empty map.
-fn as_map(node: &mut Value, one_of: bool) -> Option<&mut Map<String, Value>> {
-    if node.is_null() || (one_of && !node.is_object()) {
-        *node = Value::Object(Map::new());
-    }
-    node.as_object_mut()
-}
 
 #[cfg(test)]
 mod tests {
