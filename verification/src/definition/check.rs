@@ -187,7 +187,8 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     };
     result.reference = Some(r);
     if let Some(v) = &check.validation {
-        return validated(result, &v.value, (computed, r), measure, ctx);
+        let file = reference.table.as_ref().map(|t| t.file.clone());
+        return validated(result, &v.value, (computed, r), (measure, file), ctx);
     }
     judged(result, &tol, (computed, r), check.compare)
 }
@@ -243,7 +244,7 @@ fn validated(
     mut result: CheckResult,
     spec: &ValidationFile,
     (simulation, measurement): (f64, f64),
-    measure: &MeasureFile,
+    (measure, measurement_file): (&MeasureFile, Option<String>),
     ctx: &Context,
 ) -> CheckResult {
     let on = |scene: &str| {
@@ -258,6 +259,10 @@ fn validated(
             .map(|(name, d)| Ok((name.clone(), on(&d.scene)?)))
             .collect::<Result<Vec<_>, String>>()?;
         ValidationRow::new(spec, (simulation, measurement), coarse, inputs)
+    });
+    let parts = parts.map(|row| ValidationRow {
+        measurement_file,
+        ..row
     });
     let row = match parts {
         Ok(row) => row,

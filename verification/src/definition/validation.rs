@@ -99,6 +99,11 @@ pub struct ValidationRow {
     pub input_deltas: Vec<(String, f64)>,
     /// The area metric of this comparison (`area_metric`).
     pub area: f64,
+    /// The table under reference-data/ the measurement was read from (the report pools the
+    /// comparisons of one table, i.e. one material, over its cases); none when the
+    /// measurement is a value written in the case.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measurement_file: Option<String>,
 }
 
 impl ValidationRow {
@@ -145,6 +150,7 @@ impl ValidationRow {
             k,
             input_deltas,
             area: area_metric((simulation, spread), (measurement, u_d)),
+            measurement_file: None,
         })
     }
 

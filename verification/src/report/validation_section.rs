@@ -90,9 +90,9 @@ fn table(rows: &[Comparison]) -> String {
 
 /// Per quantity: the comparisons covered, the mean |E| / D and the mean area metric over D
 /// (the area metric pooled over the shots, each relative to its measurement).
-fn summary(rows: &[Comparison]) -> String {
+fn summary(rows: &[&Comparison]) -> String {
     let mut per: BTreeMap<&str, Vec<&Comparison>> = BTreeMap::new();
-    for r in rows.iter().filter(|r| !r.v.is_null()) {
+    for r in rows.iter().copied().filter(|r| !r.v.is_null()) {
         per.entry(r.quantity.as_str()).or_default().push(r);
     }
     let mut s = String::from(
@@ -116,6 +116,30 @@ fn summary(rows: &[Comparison]) -> String {
         );
     }
     s
+}
+
+/// Every case's comparisons pooled per measurement table (`measurement_file`: one table per
+/// material), each with the quantity table of [`summary`]: a material's shots over its cases
+/// read as one set. Empty when no row names its table.
+fn by_material(all: &[Comparison]) -> String {
+    let mut per: BTreeMap<&str, Vec<&Comparison>> = BTreeMap::new();
+    for r in all {
+        if let Some(file) = r.v["measurement_file"].as_str() {
+            per.entry(file).or_default().push(r);
+        }
+    }
+    let mut s = String::new();
+    for (file, rows) in &per {
+        let _ = write!(
+            s,
+            "\n**`{file}`**, every case that reads it:\n{}",
+            summary(rows)
+        );
+    }
+    if s.is_empty() {
+        return s;
+    }
+    format!("## Pooled per material\n{s}\n")
 }
 
 /// What the model predicts within its uncertainty and what it misses, with the cases' reasons.
@@ -153,10 +177,21 @@ fn statement(rows: &[Comparison]) -> String {
     s
 }
 
+/// Every case's comparisons, in the cases' order.
+fn every_comparison(results: &Value) -> Vec<Comparison> {
+    results["cases"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .flat_map(comparisons)
+        .collect()
+}
+
 /// The section as Markdown (headings from level 3); `None` when no check is against a
 /// measurement.
 pub fn markdown(results: &Value) -> Option<String> {
-    let mut s = String::new();
+    let all = every_comparison(results);
+    let mut s = by_material(&all);
     for c in results["cases"].as_array().into_iter().flatten() {
         let rows = comparisons(c);
         if rows.is_empty() {
@@ -171,7 +206,7 @@ pub fn markdown(results: &Value) -> Option<String> {
             c["problem"].as_str().unwrap_or("").trim()
         );
         s.push_str(&table(&rows));
-        s.push_str(&summary(&rows));
+        s.push_str(&summary(&rows.iter().collect::<Vec<_>>()));
         s.push_str(&statement(&rows));
     }
     (!s.is_empty()).then(|| {
@@ -195,12 +230,7 @@ pub fn context(results: &Value, out: &Path) -> Value {
     let Some(text) = markdown(results) else {
         return serde_json::json!({"present": false, "md": "", "html": "", "count": 0, "covered": 0});
     };
-    let all: Vec<Comparison> = results["cases"]
-        .as_array()
-        .into_iter()
-        .flatten()
-        .flat_map(comparisons)
-        .collect();
+    let all = every_comparison(results);
     let covered = all.iter().filter(|r| covered(r)).count();
     let e = crate::report::markdown::embed(
         &text,
@@ -249,6 +279,39 @@ mod tests {
         assert!(md.contains("- `final-length-b`: too long"), "{md}");
         // mean |E| / D over the two shots: (1 % + 5 %) / 2
         assert!(md.contains("| final-length | 2 | 1 | 3.00 % |"), "{md}");
+    }
+
+    #[test]
+    fn comparisons_of_one_table_pool_over_their_cases() {
+        let row = |id: &str, s: f64, d: f64, file: Option<&str>| {
+            serde_json::json!({"id": id, "reference_kind": "experiment",
+                "vv20_budget": {"simulation": s, "measurement": d, "comparison_error": s - d,
+                    "u_num": 0.0, "u_input": 0.0, "u_d": 0.1, "u_val": 0.1, "k": 2.0,
+                    "area": (s - d).abs(), "measurement_file": file}})
+        };
+        let case = |name: &str, checks: Vec<Value>| serde_json::json!({"suite": "s", "case": name, "title": "t", "problem": "p", "checks": checks});
+        let r = serde_json::json!({"cases": [
+            case("a", vec![row("final-length-1", 10.1, 10.0, Some("cu.csv"))]),
+            case("b", vec![row("final-length-2", 10.5, 10.0, Some("cu.csv")),
+                           row("final-length-3", 10.2, 10.0, Some("al.csv"))]),
+            case("c", vec![row("final-length-4", 10.0, 10.0, None)]),
+        ]});
+        let md = markdown(&r).unwrap();
+        let pooled = &md[md.find("## Pooled per material").unwrap()..md.find("## s/a").unwrap()];
+        // cu.csv over cases a and b: 1 % and 5 %, one of two within 2 u_val
+        assert!(pooled.contains("**`cu.csv`**"), "{pooled}");
+        assert!(
+            pooled.contains("| final-length | 2 | 1 | 3.00 % |"),
+            "{pooled}"
+        );
+        assert!(
+            pooled.contains("| final-length | 1 | 1 | 2.00 % |"),
+            "{pooled}"
+        );
+        assert!(
+            !pooled.contains("| final-length | 1 | 1 | 0.00 % |"),
+            "a row without a table pools nowhere: {pooled}"
+        );
     }
 
     #[test]
