@@ -76,6 +76,10 @@ def check_expressible(s):
                              "(only *CREEP or a user material)")
     if kind == "impactor":
         check_impactor(load_value, s["geometry"])
+    if kind == "wall" and float(load_value.get("friction") or 0.0) != 0.0:
+        raise NotExpressible("load.wall.friction",
+                             "this adapter holds the foot on the wall by a boundary condition "
+                             "(no contact pair), which slides freely: a frictionless wall only")
     end = time["end"]
     if isinstance(end, dict):
         raise NotExpressible("time.end.after_contact",

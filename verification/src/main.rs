@@ -113,7 +113,8 @@ enum Command {
         results_from: Option<PathBuf>,
     },
     /// Check the cases: reference kinds, tolerance reasons, unique requirement ids, skip
-    /// reasons, provenance of reference files.
+    /// reasons, provenance of reference files, and that every scene loads with its overrides
+    /// (wrong models' included).
     Lint {
         /// Repository root (default: found from the current folder).
         #[arg(long)]

@@ -196,6 +196,18 @@ class RefusalTest(Tmp):
         self.assertIn("not expressible: load.impactor.contact: surface: in the axisymmetric",
                       r.stderr.strip().splitlines()[-1])
 
+    def test_wall_friction_is_not_expressible(self):
+        """The adapter's wall is a boundary condition that slides freely: a scene with
+        Coulomb friction on the wall is refused, never run frictionless in silence."""
+        s = pulse_scene()
+        s["plate"]["ends"] = "free"
+        s["load"] = {"wall": {"velocity": 100.0, "friction": 0.1}}
+        r = run_adapter(s, self.out)
+        self.assertEqual(r.returncode, 3, r.stderr)
+        self.assertIn("not expressible: load.wall.friction: ",
+                      r.stderr.strip().splitlines()[-1])
+        self.assertEqual(outputs_present(self.out), [])
+
     def test_rate_law_is_not_expressible(self):
         s = pulse_scene()
         s["material"]["plasticity"] = {"yield_stress": 176e6, "hardening": {"linear": 4.14e9},
