@@ -90,7 +90,6 @@ fn json_map(key: &str, value: Value) -> Value {
     Value::Object(Map::from_iter([(key.to_string(), value)]))
 }
 
-
 #[cfg(test)]
 mod tests {
     //! Checks the tree edits against hand-written expected trees.

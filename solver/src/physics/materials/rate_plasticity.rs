@@ -757,7 +757,9 @@ mod tests {
         let r = update(&m, &[0.8 * a / (2.0 * mu), 0.0, 0.0, 0.0], &mut state);
         assert!(state.plastic.eqps > 0.0, "{state:?}");
         let q = super::super::material::von_mises(&r.stress);
-        assert_relative_eq!(q, 0.6 * a, max_relative = 1e-9);
+        // Measured: exactly 0.6 A (the return lands on the softened surface, the heating of
+        // this step acts on the next); the bound is the Newton's own relative tolerance.
+        assert_relative_eq!(q, 0.6 * a, max_relative = NEWTON_TOLERANCE);
     }
 
     /// Johnson-Cook's static curve `a + b k^n` and its slope `n (b k^n) / k` (the Newton
