@@ -317,7 +317,7 @@ fn lint(root: Option<PathBuf>) -> ExitCode {
     findings.extend(
         cases
             .iter()
-            .flat_map(impact_verification::run::jobs::scene_problems),
+            .flat_map(impact_verification::run::plan::scene_problems),
     );
     for e in &errors {
         eprintln!("error: {e}");

@@ -23,7 +23,7 @@ fn the_repository_cases_are_lint_clean() {
     assert!(findings.is_empty(), "lint findings:\n{}", text.join("\n"));
     let refused: Vec<String> = cases
         .iter()
-        .flat_map(impact_verification::jobs::scene_problems)
+        .flat_map(impact_verification::run::plan::scene_problems)
         .collect();
     assert!(
         refused.is_empty(),
@@ -324,7 +324,7 @@ fn lint_names_every_scene_and_wrong_model_the_scene_reader_refuses() {
         std::fs::write(dir.join("scene.yaml"), scene).unwrap();
         let (cases, errors) = load_cases(&root.join("verification/cases"));
         assert!(errors.is_empty(), "{errors:?}");
-        let p = impact_verification::jobs::scene_problems(&cases[0]);
+        let p = impact_verification::run::plan::scene_problems(&cases[0]);
         let _ = std::fs::remove_dir_all(root);
         p
     };

@@ -379,25 +379,14 @@ fn node_name(n: MidSpanNode) -> &'static str {
     }
 }
 
-/// What stops a case's scenes from loading, each scene on its own (`impact lint`, before any
-/// run): a scene file with its `set` overrides that the solver's scene reader refuses (an odd
-/// `mesh.ny`, a key the file lacks, a value out of range), named at the case's line and
-/// column; then the wrong models' runs, which put their overrides on top.
-pub fn scene_problems(case: &Case) -> Vec<String> {
-    let mut problems: Vec<String> = case
-        .file
+/// Why each of a case's scenes does not load with its overrides (each scene on its own, not
+/// only the first; [`crate::run::plan::scene_problems`] adds the wrong models' runs).
+pub fn scene_errors(case: &Case) -> Vec<String> {
+    case.file
         .scenes
         .values()
         .filter_map(|spec| scene_job(&case.dir, &spec.value, &case.loc(spec)).err())
-        .collect();
-    if problems.is_empty() {
-        if let Err(e) =
-            case_jobs(case).and_then(|base| crate::run::discriminate::jobs(case, &base, true))
-        {
-            problems.push(e);
-        }
-    }
-    problems
+        .collect()
 }
 
 /// A case's scenes resolved to jobs, by scene name (series levels are `SERIES@LEVEL`).

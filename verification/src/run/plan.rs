@@ -59,6 +59,22 @@ pub(super) fn check_matches(case: &Case, check_id: &str, filter: &Option<String>
     }
 }
 
+/// What stops a case's scenes from loading (`impact lint`, before any run): a scene file with
+/// its `set` overrides that the solver's scene reader refuses (an odd `mesh.ny`, a key the
+/// file lacks, a value out of range), named at the case's line and column; then the wrong
+/// models' runs, which put their overrides on top.
+pub fn scene_problems(case: &Case) -> Vec<String> {
+    let mut problems = jobs::scene_errors(case);
+    if problems.is_empty() {
+        if let Err(e) =
+            jobs::case_jobs(case).and_then(|base| crate::run::discriminate::jobs(case, &base, true))
+        {
+            problems.push(e);
+        }
+    }
+    problems
+}
+
 /// The repository's cases: those that load and lint clean, and the broken ones (each will be
 /// a FAIL row). Errors: lint findings that are no single case's.
 pub fn load(repo: &Repo) -> Result<Loaded, Vec<String>> {
