@@ -28,6 +28,21 @@ fn scene(d: &Path, name: &str, edit: impl Fn(&str) -> String) -> PathBuf {
     p
 }
 
+/// `impact simulate` of the example on a 20 x 4 mesh to 0.1 ms (a run that completes in
+/// moments) into `out`: its exit status and stderr.
+fn simulate_short(d: &Path, name: &str, out: &Path) -> (i32, String) {
+    let s = scene(d, name, |t| {
+        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
+            .replace("end: 3.0e-3", "end: 1.0e-4")
+    });
+    run(&[
+        "simulate",
+        s.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ])
+}
+
 fn impact(args: &[&str]) -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_impact"));
     c.args(args);
@@ -166,16 +181,7 @@ fn sigterm_stops_cleanly_and_a_killed_runs_staging_is_removed_by_the_next_run() 
     signal(&child, "KILL");
     let _ = child.wait_with_output().unwrap();
     assert_eq!(leftovers(&d).len(), 1);
-    let s = scene(&d, "short", |t| {
-        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
-            .replace("end: 3.0e-3", "end: 1.0e-4")
-    });
-    let (code, err) = run(&[
-        "simulate",
-        s.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (code, err) = simulate_short(&d, "short", &out);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("left by a run that was killed"), "{err}");
     assert!(leftovers(&d).is_empty());
@@ -330,16 +336,7 @@ fn keep_partial_keeps_the_rows_of_a_stopped_run_and_says_why() {
     assert_eq!(code, 2);
     assert!(!bare.exists() && leftovers(&d).is_empty());
     // A complete run into the kept folder replaces the partial output.
-    let fine = scene(&d, "fine", |t| {
-        t.replace("nx: 80, ny: 16", "nx: 20, ny: 4")
-            .replace("end: 3.0e-3", "end: 1.0e-4")
-    });
-    let (code, err) = run(&[
-        "simulate",
-        fine.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let (code, err) = simulate_short(&d, "fine", &out);
     assert_eq!(code, 0, "{err}");
     assert!(out.join("summary.json").exists() && !out.join("stopped.json").exists());
 

@@ -379,23 +379,35 @@ fn node_name(n: MidSpanNode) -> &'static str {
     }
 }
 
-/// Why each of a case's scenes does not load with its overrides (each scene on its own, not
-/// only the first; [`crate::run::plan::scene_problems`] adds the wrong models' runs).
-pub fn scene_errors(case: &Case) -> Vec<String> {
-    case.file
-        .scenes
-        .values()
-        .filter_map(|spec| scene_job(&case.dir, &spec.value, &case.loc(spec)).err())
-        .collect()
+/// A case's scenes resolved to jobs, by scene name (series levels are `SERIES@LEVEL`); the
+/// first reason a scene does not load ([`case_jobs_or_every_error`] gives them all).
+pub fn case_jobs(case: &Case) -> Result<BTreeMap<String, Job>, String> {
+    case_jobs_or_every_error(case).map_err(|errors| errors.into_iter().next().unwrap_or_default())
 }
 
-/// A case's scenes resolved to jobs, by scene name (series levels are `SERIES@LEVEL`).
-pub fn case_jobs(case: &Case) -> Result<BTreeMap<String, Job>, String> {
+/// [`case_jobs`], or why each of the case's scenes does not load with its overrides, each
+/// scene on its own (`impact lint`: not only the first; a series' error comes alone, after
+/// its scene loaded).
+pub fn case_jobs_or_every_error(case: &Case) -> Result<BTreeMap<String, Job>, Vec<String>> {
     let mut jobs = BTreeMap::new();
+    let mut errors = Vec::new();
     for (name, spec) in &case.file.scenes {
-        let loc = case.loc(spec);
-        jobs.insert(name.clone(), scene_job(&case.dir, &spec.value, &loc)?);
+        match scene_job(&case.dir, &spec.value, &case.loc(spec)) {
+            Ok(job) => {
+                jobs.insert(name.clone(), job);
+            }
+            Err(e) => errors.push(e),
+        }
     }
+    if !errors.is_empty() {
+        return Err(errors);
+    }
+    add_series(case, &mut jobs).map_err(|e| vec![e])?;
+    Ok(jobs)
+}
+
+/// The levels of the case's series, each a refined copy of its scene's job.
+fn add_series(case: &Case, jobs: &mut BTreeMap<String, Job>) -> Result<(), String> {
     for (name, series) in &case.file.series {
         let loc = case.loc(series);
         let s = &series.value;
@@ -425,7 +437,7 @@ pub fn case_jobs(case: &Case) -> Result<BTreeMap<String, Job>, String> {
             );
         }
     }
-    Ok(jobs)
+    Ok(())
 }
 
 fn scene_job(dir: &Path, spec: &SceneSpec, loc: &Loc) -> Result<Job, String> {

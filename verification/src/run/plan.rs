@@ -64,15 +64,13 @@ pub(super) fn check_matches(case: &Case, check_id: &str, filter: &Option<String>
 /// file lacks, a value out of range), named at the case's line and column; then the wrong
 /// models' runs, which put their overrides on top.
 pub fn scene_problems(case: &Case) -> Vec<String> {
-    let mut problems = jobs::scene_errors(case);
-    if problems.is_empty() {
-        if let Err(e) =
-            jobs::case_jobs(case).and_then(|base| crate::run::discriminate::jobs(case, &base, true))
-        {
-            problems.push(e);
-        }
+    match jobs::case_jobs_or_every_error(case) {
+        Err(errors) => errors,
+        Ok(base) => crate::run::discriminate::jobs(case, &base, true)
+            .err()
+            .into_iter()
+            .collect(),
     }
-    problems
 }
 
 /// The repository's cases: those that load and lint clean, and the broken ones (each will be
