@@ -745,6 +745,8 @@ mod tests {
             steel(power, a, law, 1e-6)
         };
         let m = hot(293.15);
+        // A (1 - T*_0) with T*_0 = 60 / 150 = 0.4: the same product in another order, a few
+        // ulp (2.2e-16 each) apart at most.
         assert_relative_eq!(
             m.virgin_yield_stress().unwrap(),
             0.6 * a,
