@@ -197,6 +197,13 @@ pub struct WallSummary {
     pub final_length: f64,
     /// `final_length_m / plate.thickness` (-).
     pub length_ratio: f64,
+    /// Taylor's undeformed length `X` at the end: the length of the bar's rear part whose side
+    /// stays within 0.5 % of its initial radius, measured from the top of the side down to the
+    /// highest point where the side's distance from the axis reaches 1.005 times the initial
+    /// radius (interpolated between the side's nodes; the `undeformed_length_m` column's last
+    /// value; ALGORITHM.md 5c), m.
+    #[serde(rename = "undeformed_length_m")]
+    pub undeformed_length: f64,
     /// The foot's radius at the end: the largest current distance from the axis of a node
     /// that has touched the wall during the run (the side rolled onto it included; the
     /// `foot_radius_m` column's last value; the half-width in plane strain), m.
@@ -218,11 +225,25 @@ pub struct WallSummary {
     pub dissipated_energy: f64,
     /// The largest equivalent plastic strain at the end (plastic materials; else null).
     pub max_equivalent_plastic_strain: Option<f64>,
+    /// The bar's side at the end, as a digitised Taylor profile gives it (ALGORITHM.md 5c).
+    pub final_outline: FinalOutline,
+}
+
+/// `wall.final_outline`: the side's nodes (the reference's outer surface) at the end, bottom to
+/// top, m.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FinalOutline {
+    /// Each node's height above the bottom axis node (the impact face's centre), m.
+    #[serde(rename = "height_m")]
+    pub height: Vec<f64>,
+    /// Each node's distance from the axis (the half-width in plane strain), m.
+    #[serde(rename = "radius_m")]
+    pub radius: Vec<f64>,
 }
 
 impl WallSummary {
     fn new(scene: &Scene, t: &RunTotals) -> Option<WallSummary> {
-        let w = t.wall?;
+        let w = t.wall.as_ref()?;
         let radius = 0.5 * scene.plate.length;
         Some(WallSummary {
             peak_force: w.peak_bearing_force,
@@ -230,12 +251,17 @@ impl WallSummary {
             release_time: w.release_time,
             final_length: w.length,
             length_ratio: w.length / scene.plate.thickness,
+            undeformed_length: w.undeformed_length,
             foot_radius: w.foot_radius,
             foot_radius_ratio: w.foot_radius / radius,
             max_foot_radius: w.max_foot_radius,
             rebound_velocity: w.rebound_velocity,
             dissipated_energy: w.dissipated,
             max_equivalent_plastic_strain: w.max_plastic_strain,
+            final_outline: FinalOutline {
+                height: w.outline.iter().map(|p| p[0]).collect(),
+                radius: w.outline.iter().map(|p| p[1]).collect(),
+            },
         })
     }
 }

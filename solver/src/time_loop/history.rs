@@ -179,7 +179,7 @@ pub(crate) struct Sample<'a> {
     /// Contact half-width (m) and nodes in contact; surface coupling only.
     pub patch: Option<[f64; 2]>,
     /// The wall's reading (`WallReading::COLUMNS`); wall only.
-    pub wall: Option<[f64; 4]>,
+    pub wall: Option<[f64; 5]>,
     /// Mid-span `u_y` at the top, mid-plane and bottom, m.
     pub uy: [f64; 3],
     pub energies: &'a Energies,

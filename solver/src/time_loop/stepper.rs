@@ -469,6 +469,8 @@ impl<'a, F: Formulation, M: ConstitutiveModel> Stepper<'a, F, M> {
             release_time: released,
             length: reading.bar_length,
             foot_radius: reading.foot_radius,
+            undeformed_length: reading.undeformed_length,
+            outline: wall.outline(&self.u),
             max_foot_radius,
             peak_bearing_force,
             rebound_velocity: released.map(|_| RigidWall::mean_velocity(&model.mass, &self.v)),

@@ -6,6 +6,8 @@
 //!   issue 40 both were the top axis node's height, which counts the gap once the bar has
 //!   left the wall; the column now reads the bar itself, and the summary must follow it.)
 //! - `foot-radius`: `wall.foot_radius_m` is the last row's `foot_radius_m`, exact.
+//! - `undeformed-length`: `wall.undeformed_length_m` is the last row's `undeformed_length_m`,
+//!   exact (where the run gives both: a code that does not produce Taylor's `X` has no row).
 //! - `max-foot-radius`, `peak-force`, `peak-step-force`: `wall.max_foot_radius_m`,
 //!   `wall.peak_force_N` and `wall.peak_step_force_N` are the largest `foot_radius_m`,
 //!   `bearing_force_N` and `contact_force_N` over every step: equal to the rows' largest when
@@ -31,6 +33,8 @@ use super::invariant_row::row;
 pub struct WallRecomputed {
     /// `(summary, last row)` of final length, foot radius (m) and dissipation (J).
     pub at_end: [(f64, f64); 3],
+    /// `(summary, last row)` of the undeformed length (m), where the run gives both.
+    pub undeformed: Option<(f64, f64)>,
     /// `(summary, rows' largest)` of the largest foot radius (m), the bearing force (N) and
     /// the step force (N).
     pub largest: [(f64, f64); 3],
@@ -63,6 +67,7 @@ pub fn recompute(run: &RunData) -> Option<WallRecomputed> {
             (key("foot_radius_m")?, last("foot_radius_m")?),
             (key("dissipated_energy_J")?, last("contact_energy_J")?),
         ],
+        undeformed: key("undeformed_length_m").zip(last("undeformed_length_m")),
         largest: [
             (key("max_foot_radius_m")?, largest("foot_radius_m")?),
             (key("peak_force_N")?, largest("bearing_force_N")?),
@@ -93,8 +98,16 @@ pub fn checks(name: &str, r: &WallRecomputed) -> Vec<CheckResult> {
             "contact_force_N",
         ),
     ];
+    const UNDEFORMED: (&str, &str, &str) = (
+        "undeformed-length",
+        "wall.undeformed_length_m",
+        "undeformed_length_m",
+    );
     let mut out = Vec::new();
-    for ((id, key, col), (summary, row_value)) in AT_END.iter().zip(r.at_end) {
+    let at_end = AT_END.iter().zip(r.at_end);
+    for ((id, key, col), (summary, row_value)) in
+        at_end.chain(r.undeformed.map(|u| (&UNDEFORMED, u)))
+    {
         out.push(row(
             format!("{name}: {id}"),
             &format!("{key} vs the last row's {col}"),
@@ -143,20 +156,21 @@ mod tests {
     use impact_solver::History;
     use std::collections::BTreeMap;
 
-    const COLUMNS: [&str; 6] = [
+    const COLUMNS: [&str; 7] = [
         "time_s",
         "contact_force_N",
         "foot_radius_m",
         "bar_length_m",
         "bearing_force_N",
         "contact_energy_J",
+        "undeformed_length_m",
     ];
 
     /// Steps of 1 us: a landing stop of 9e6 N at step 0, bearing forces rising then falling,
     /// release at step 6 (force 0 from there), the foot growing to 5 mm then recovering to
     /// 4.5 mm; rows every `every` steps and the last.
     fn run(every: usize) -> RunData {
-        let step = |n: usize| -> [f64; 6] {
+        let step = |n: usize| -> [f64; 7] {
             let force = [9e6, 4e5, 5e5, 3e5, 2e5, 1e5, 0.0, 0.0][n];
             let bearing = [1e4, 3.9e5, 5e5, 3e5, 2e5, 1e5, 0.0, 0.0][n];
             let foot = [1e-3, 2e-3, 4e-3, 5e-3, 4.8e-3, 4.6e-3, 4.5e-3, 4.5e-3][n];
@@ -167,6 +181,7 @@ mod tests {
                 0.03 - 1e-4 * n as f64,
                 bearing,
                 2.0,
+                0.03 - 1e-3 * n as f64,
             ]
         };
         let rows: Vec<usize> = (0..8).filter(|n| n % every == 0 || *n == 7).collect();
@@ -175,6 +190,7 @@ mod tests {
             "n_steps": 7,
             "wall": {
                 "final_length_m": step(7)[3], "foot_radius_m": 4.5e-3,
+                "undeformed_length_m": step(7)[6],
                 "dissipated_energy_J": 2.0, "max_foot_radius_m": 5e-3,
                 "peak_force_N": 5e5, "peak_step_force_N": 9e6,
                 "release_time_s": 6e-6, "rebound_velocity_mps": 3.0,
@@ -220,16 +236,37 @@ mod tests {
             // The landing stop as the bearing peak: above the rows' largest bearing force; with
             // every step in the rows the equality fails it, else the one-sided check cannot.
             assert_eq!(failing(&stop).len(), usize::from(every == 1), "{every}");
+            // Taylor's X read at the largest bulge (the old habit of reading it mid-run).
+            let mid_run = with(&data, "undeformed_length_m", serde_json::json!(0.027));
+            assert_eq!(failing(&mid_run), ["bar: undeformed-length"]);
             let on_wall = with(&data, "release_time_s", Value::Null);
             assert_eq!(failing(&on_wall), ["bar: release"]);
         }
         // A bar still on the wall with a rebound (the old definition): counted.
         let mut d = run(1);
         let v = &mut d.histories.get_mut("").unwrap().values;
-        let last = v.len() - 6;
+        let last = v.len() - COLUMNS.len();
         v[last + 1] = 1e5;
         let d = with(&d, "release_time_s", Value::Null);
         assert_eq!(failing(&d), ["bar: release"]);
         assert_eq!(recompute(&d).unwrap().release_mismatches, 1);
+    }
+
+    #[test]
+    fn a_code_without_taylor_s_x_has_no_undeformed_row() {
+        // Another code's results (the contract's subset) without the key: the other rows stay.
+        let mut d = run(1);
+        d.summary.as_mut().unwrap()["wall"]
+            .as_object_mut()
+            .unwrap()
+            .remove("undeformed_length_m");
+        let r = recompute(&d).unwrap();
+        assert_eq!(r.undeformed, None);
+        let ids: Vec<String> = checks("bar", &r).into_iter().map(|k| k.id).collect();
+        assert!(
+            !ids.contains(&"bar: undeformed-length".to_string()),
+            "{ids:?}"
+        );
+        assert!(ids.contains(&"bar: final-length".to_string()), "{ids:?}");
     }
 }

@@ -43,6 +43,12 @@ use crate::physics::contacts::impulse_ledger::ImpulseLedger;
 /// thickness), far below this.
 const TOUCH_FRACTION: f64 = 1e-9;
 
+/// Growth of the side's radius over the initial one (-) from which a section of the bar counts
+/// as deformed ([`RigidWall::undeformed_length`]): 0.5 %, 0.02 mm on a 7.6 mm bar (what an
+/// outline or a micrometer resolves), 20x the radial strain of the elastic ringing a copper
+/// bar keeps (`nu sigma_y / E`, about 2.5e-4).
+pub const DEFORMED_GROWTH: f64 = 0.005;
+
 /// The wall and its forces at `t_n`.
 #[derive(Debug, Clone)]
 pub struct RigidWall {
@@ -74,6 +80,10 @@ pub struct RigidWall {
     max_bearing: f64,
     /// The largest foot radius so far, m.
     max_foot: f64,
+    /// The side's nodes (the reference's outer surface, farthest from the axis), bottom to top.
+    side: Vec<usize>,
+    /// The side's reference distance from the axis (the bar's initial radius), m.
+    radius0: f64,
 }
 
 /// What the wall reports at `t_n` (the history's wall columns, section 5c), SI units; all 0
@@ -89,30 +99,35 @@ pub struct WallReading {
     /// The bearing force `B_n`: the body's own force on the wall through the nodes it holds,
     /// N (whole body).
     pub bearing_force: f64,
+    /// The length of the bar's rear part whose side stays within [`DEFORMED_GROWTH`] of its
+    /// initial radius ([`RigidWall::undeformed_length`], Taylor's `X`), m.
+    pub undeformed_length: f64,
 }
 
 impl WallReading {
     /// The history's wall columns, in this order.
-    pub const COLUMNS: [&'static str; 4] = [
+    pub const COLUMNS: [&'static str; 5] = [
         "foot_radius_m",
         "bar_length_m",
         "contact_radius_m",
         "bearing_force_N",
+        "undeformed_length_m",
     ];
 
     /// The values of [`WallReading::COLUMNS`].
-    pub fn values(&self) -> [f64; 4] {
+    pub fn values(&self) -> [f64; 5] {
         [
             self.foot_radius,
             self.bar_length,
             self.contact_radius,
             self.bearing_force,
+            self.undeformed_length,
         ]
     }
 }
 
 /// What the wall reports at the end of a run (SI units).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct WallTotals {
     /// When the body left the wall for good, s (`None`: still on it at the end).
     pub release_time: Option<f64>,
@@ -120,6 +135,11 @@ pub struct WallTotals {
     pub length: f64,
     /// [`WallReading::foot_radius`] at the end, m.
     pub foot_radius: f64,
+    /// [`WallReading::undeformed_length`] at the end, m.
+    pub undeformed_length: f64,
+    /// The side's outline at the end ([`RigidWall::outline`]): `[height, radius]` per side
+    /// node, bottom to top, m.
+    pub outline: Vec<[f64; 2]>,
     /// The largest [`WallReading::foot_radius`] of the run, m.
     pub max_foot_radius: f64,
     /// The largest [`WallReading::bearing_force`] of the run, N.
@@ -138,6 +158,10 @@ impl RigidWall {
     /// `friction` is Coulomb's `mu` (-).
     pub fn new(mesh: &PlateMesh, thickness: f64, (hold_face, friction): (bool, f64)) -> RigidWall {
         let n = mesh.mesh.n_nodes();
+        let coords = &mesh.mesh.coords;
+        let outer = coords.iter().map(|c| c[0]).fold(f64::INFINITY, f64::min);
+        let mut side: Vec<usize> = (0..n).filter(|&k| coords[k][0] == outer).collect();
+        side.sort_by(|&a, &b| coords[a][1].total_cmp(&coords[b][1]));
         RigidWall {
             reference: mesh.mesh.coords.clone(),
             axis_x: mesh.mid_span_x(),
@@ -153,6 +177,8 @@ impl RigidWall {
             bearing: 0.0,
             max_bearing: 0.0,
             max_foot: 0.0,
+            side,
+            radius0: mesh.mid_span_x() - outer,
         }
     }
 
@@ -252,7 +278,47 @@ impl RigidWall {
             bar_length: self.height(top, u) - self.height(bottom, u),
             contact_radius: contact,
             bearing_force: self.bearing,
+            undeformed_length: self.undeformed_length(u),
         }
+    }
+
+    /// Taylor's undeformed length `X` at `u` (m): from the top of the side down to the highest
+    /// point where the side's current distance from the axis reaches `(1 + g) r_0`
+    /// ([`DEFORMED_GROWTH`] `g`, `r_0` the initial radius), interpolated linearly between the
+    /// side's nodes, along the current heights; the whole side's height when no node reaches
+    /// it, 0 when the top one does (section 5c).
+    pub fn undeformed_length(&self, u: &[f64]) -> f64 {
+        let threshold = (1.0 + DEFORMED_GROWTH) * self.radius0;
+        let radius = |node: usize| self.axis_x - (self.reference[node][0] + u[2 * node]);
+        let (Some(&bottom), Some(&top)) = (self.side.first(), self.side.last()) else {
+            return 0.0;
+        };
+        let mut above = top;
+        for &node in self.side.iter().rev() {
+            let r = radius(node);
+            if r >= threshold {
+                if node == top {
+                    return 0.0;
+                }
+                let (z, z_above) = (self.height(node, u), self.height(above, u));
+                let t = (r - threshold) / (r - radius(above));
+                return self.height(top, u) - (z + t * (z_above - z));
+            }
+            above = node;
+        }
+        self.height(top, u) - self.height(bottom, u)
+    }
+
+    /// The side's outline at `u` (m), the side's nodes bottom to top: each one's height above
+    /// the bottom axis node (the impact face's centre) and distance from the axis, as a
+    /// digitised Taylor profile gives them (section 5c).
+    pub fn outline(&self, u: &[f64]) -> Vec<[f64; 2]> {
+        let face = self.height(self.axis_nodes[0], u);
+        let radius = |node: usize| self.axis_x - (self.reference[node][0] + u[2 * node]);
+        self.side
+            .iter()
+            .map(|&node| [self.height(node, u) - face, radius(node)])
+            .collect()
     }
 
     /// The largest foot radius and bearing force so far (m, N).
@@ -402,6 +468,44 @@ mod tests {
             let held = if r[1] == 0.0 { 1.0 / 0.1 } else { 0.0 };
             assert_eq!(f[2 * node + 1], held, "node {node}");
         }
+    }
+
+    #[test]
+    fn taylor_s_undeformed_length_is_read_from_the_top_of_the_side() {
+        // The one-element bar: side nodes (x = 0, radius 1 m) at heights 0, 0.5 and 1 m.
+        let w = wall();
+        let n = w.reference.len();
+        let side_at = |u: &mut Vec<f64>, y: f64, grow: f64| {
+            let k = (0..n)
+                .find(|&k| w.reference[k] == [0.0, y])
+                .expect("a side node");
+            u[2 * k] = -grow;
+        };
+        // A rigid drop of 0.1 m: nothing grew, the whole side (1 m) is undeformed.
+        let mut u: Vec<f64> = (0..2 * n).map(|d| -0.1 * (d % 2) as f64).collect();
+        assert_eq!(w.undeformed_length(&u), 1.0);
+        // The foot grown 2 %: 1.005 is reached 3/4 of the way up to the middle node (0.375 m).
+        side_at(&mut u, 0.0, 0.02);
+        // Bound 1e-13 m: `r - 1.005 r_0` cancels two digits (1.02 - 1.005), so the crossing
+        // carries some 1e-14 of relative round-off (measured 2.8e-15 m here); a crossing taken
+        // at the node instead of interpolated misses by 0.275 m.
+        let close = |x: f64, want: f64| (x - want).abs() < 1e-13;
+        assert!(
+            close(w.undeformed_length(&u), 0.625),
+            "{}",
+            w.undeformed_length(&u)
+        );
+        // A bulge at the middle (1 %) above the foot: the highest crossing counts, halfway
+        // between the middle and the top (0.25 m); scanning from the foot up would stop at 0.625.
+        side_at(&mut u, 0.5, 0.01);
+        assert!(close(w.undeformed_length(&u), 0.25));
+        // 0.4 % is within the growth that counts as undeformed: the crossing lies between the
+        // foot (2 %) and the middle (0.4 %), 15/16 of the way up (0.53125 m from the top).
+        side_at(&mut u, 0.5, 0.004);
+        assert!(close(w.undeformed_length(&u), 0.53125));
+        // The top grown too: no undeformed part.
+        side_at(&mut u, 1.0, 0.01);
+        assert_eq!(w.undeformed_length(&u), 0.0);
     }
 
     #[test]
