@@ -311,6 +311,10 @@ pub struct MeasureFile {
     /// (Roache; Celik et al. 2008): needs `formal`; a non-asymptotic series fails.
     #[serde(default)]
     pub gci: Option<SeriesQuantity>,
+    /// The largest radial gap (m) between a Taylor bar's final outline and a digitised
+    /// profile (`crate::definition::profile_gap`).
+    #[serde(default)]
+    pub profile_gap: Option<crate::definition::profile_gap::ProfileGapFile>,
     /// Relative change from the first to the last level of a series,
     /// `|f_first - f_last| / |f_last|`: how much the whole refinement moves a quantity.
     #[serde(default)]
@@ -324,8 +328,7 @@ pub struct MeasureFile {
 }
 
 /// The message for a measure that does not name exactly one selector.
-pub const ONE_SELECTOR: &str =
-    "a measure needs exactly one of metric, at, extreme, error, ratio, band, order, gci, change";
+pub const ONE_SELECTOR: &str = "a measure needs exactly one of metric, at, extreme, error, ratio, band, order, gci, change, profile_gap";
 
 impl MeasureFile {
     /// How many of the value selectors (metric, at, extreme, ...) are given; exactly one is valid.
@@ -340,6 +343,7 @@ impl MeasureFile {
             self.order.is_some(),
             self.gci.is_some(),
             self.change.is_some(),
+            self.profile_gap.is_some(),
         ]
         .iter()
         .filter(|&&b| b)

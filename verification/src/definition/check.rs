@@ -432,6 +432,10 @@ pub fn measure_value(
             .value
     } else if let Some(q) = &m.change {
         series_change(q, ctx)?
+    } else if let Some(p) = &m.profile_gap {
+        let d = job(scene_name(m, ctx)?, ctx)?;
+        let summary = d.summary.as_ref().ok_or("the scene has no summary")?;
+        crate::definition::profile_gap::profile_gap(summary, &ctx.root.join(&p.file))?
     } else {
         unreachable!()
     };

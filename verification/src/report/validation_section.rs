@@ -36,7 +36,12 @@ fn quantity(check: &str, shot_free: &[&str]) -> String {
 }
 
 fn comparisons(case: &Value) -> Vec<Comparison> {
-    const QUANTITIES: [&str; 3] = ["final-length", "foot-radius", "undeformed-length"];
+    const QUANTITIES: [&str; 4] = [
+        "final-length",
+        "foot-radius",
+        "undeformed-length",
+        "profile",
+    ];
     case["checks"]
         .as_array()
         .into_iter()
@@ -70,12 +75,12 @@ fn table(rows: &[Comparison]) -> String {
         let (e, d, u) = (f(v, "comparison_error"), f(v, "measurement"), f(v, "u_val"));
         let _ = writeln!(
             s,
-            "| {} | {:.4e} | {:.4e} | {:+.3e} | {:+.2} % | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.2} | {} | {:.2e} |",
+            "| {} | {:.4e} | {:.4e} | {:+.3e} | {} | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.2} | {} | {:.2e} |",
             r.check,
             d,
             f(v, "simulation"),
             e,
-            100.0 * e / d,
+            percent_of(e, d),
             f(v, "u_num"),
             f(v, "u_input"),
             f(v, "u_d"),
@@ -88,8 +93,18 @@ fn table(rows: &[Comparison]) -> String {
     s
 }
 
+/// `e / d` in per cent, "-" when `d` is 0 (a gap measured against none: a profile).
+fn percent_of(e: f64, d: f64) -> String {
+    if d == 0.0 {
+        "-".to_string()
+    } else {
+        format!("{:+.2} %", 100.0 * e / d)
+    }
+}
+
 /// Per quantity: the comparisons covered, the mean |E| / D and the mean area metric over D
-/// (the area metric pooled over the shots, each relative to its measurement).
+/// (the area metric pooled over the shots, each relative to its measurement; "-" for a
+/// quantity measured against 0, a profile's gap).
 fn summary(rows: &[&Comparison]) -> String {
     let mut per: BTreeMap<&str, Vec<&Comparison>> = BTreeMap::new();
     for r in rows.iter().copied().filter(|r| !r.v.is_null()) {
@@ -102,17 +117,24 @@ fn summary(rows: &[&Comparison]) -> String {
         let n = rs.len() as f64;
         let covered = rs.iter().filter(|r| covered(r)).count();
         let rel = |key: &str| {
-            rs.iter()
+            let sum: f64 = rs
+                .iter()
                 .map(|r| (f(&r.v, key) / f(&r.v, "measurement")).abs())
-                .sum::<f64>()
-                / n
+                .sum();
+            percent_of(sum, n)
+        };
+        let against_zero = rs.iter().any(|r| f(&r.v, "measurement") == 0.0);
+        let (mean_e, mean_area) = if against_zero {
+            ("-".to_string(), "-".to_string())
+        } else {
+            (rel("comparison_error"), rel("area"))
         };
         let _ = writeln!(
             s,
-            "| {q} | {} | {covered} | {:.2} % | {:.2} % |",
+            "| {q} | {} | {covered} | {} | {} |",
             rs.len(),
-            100.0 * rel("comparison_error"),
-            100.0 * rel("area"),
+            mean_e.trim_start_matches('+'),
+            mean_area.trim_start_matches('+'),
         );
     }
     s
@@ -312,6 +334,19 @@ mod tests {
             !pooled.contains("| final-length | 1 | 1 | 0.00 % |"),
             "a row without a table pools nowhere: {pooled}"
         );
+    }
+
+    #[test]
+    fn a_profile_s_gap_measured_against_zero_has_no_relative_error() {
+        // The gap of an outline (D = 0, S = 0.1 mm, u_val 0.15 mm): covered, no E / D.
+        let r = case(&[("profile-a", 1.0e-4, 0.0, 1.5e-4, None)]);
+        let md = markdown(&r).unwrap();
+        assert!(
+            md.contains("| profile-a | 0.0000e0 | 1.0000e-4 | +1.000e-4 | - |"),
+            "{md}"
+        );
+        assert!(md.contains("| profile | 1 | 1 | - | - |"), "{md}");
+        assert!(!md.contains("inf"), "{md}");
     }
 
     #[test]
