@@ -124,6 +124,24 @@ def rel(a, b) -> float:
     return abs(a - b) / s if s > 0 else 0.0
 
 
+def curve_rows(name: str, a: dict, b: dict) -> list[tuple[str, object, object, float]]:
+    """A summary object of lists (wall.final_outline: height_m, radius_m), a row per list: the
+    pair of values that differ most, and that difference over the list's largest size (as the
+    history's Linf/peak: a height of 1e-20 m against 3e-20 m is not a difference of 67 %), inf
+    when the lengths differ or a side lacks the list."""
+    rows = []
+    for q in sorted(set(a) | set(b)):
+        la, lb = a.get(q), b.get(q)
+        if la is None or lb is None or len(la) != len(lb) or not la:
+            rows.append((f"{name}.{q}", None if la is None else len(la),
+                         None if lb is None else len(lb), math.inf))
+            continue
+        k = max(range(len(la)), key=lambda i: abs(la[i] - lb[i]))
+        peak = max(max(abs(x) for x in la), max(abs(x) for x in lb))
+        rows.append((f"{name}.{q}", la[k], lb[k], abs(la[k] - lb[k]) / peak if peak > 0 else 0.0))
+    return rows
+
+
 def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, float]], list[str]]:
     """(metric, a, b, relative difference) rows; problems (exact keys that differ)."""
     rows, problems = [], []
@@ -135,6 +153,9 @@ def summary_diffs(sa: dict, sb: dict) -> tuple[list[tuple[str, object, object, f
             continue
         oa, ob = sa.get(key) or {}, sb.get(key) or {}
         for p in sorted(set(oa) | set(ob)):
+            if isinstance(oa.get(p), dict) or isinstance(ob.get(p), dict):
+                rows += curve_rows(f"{key}.{p}", oa.get(p) or {}, ob.get(p) or {})
+                continue
             rows.append((f"{key}.{p}", oa.get(p), ob.get(p), rel(oa.get(p), ob.get(p))))
     if "max_energy_balance_error" in sa and "max_energy_balance_error" in sb:
         ea, eb = sa["max_energy_balance_error"], sb["max_energy_balance_error"]

@@ -35,7 +35,8 @@ TEMPERATURE_SUFFIX = "temperature_K"         # with its thermal part
 
 IMPACT_COLUMNS = ["indentation_m", "impactor_displacement_m", "impactor_velocity_mps"]
 SURFACE_COLUMNS = ["contact_half_width_m", "nodes_in_contact"]
-WALL_COLUMNS = ["foot_radius_m", "bar_length_m", "contact_radius_m", "bearing_force_N"]
+WALL_COLUMNS = ["foot_radius_m", "bar_length_m", "contact_radius_m", "bearing_force_N",
+                "undeformed_length_m"]
 # Blow-up guard (ALGORITHM.md section 7): imbalance above this multiple of the largest energy
 # scale reached so far stops the run as unstable; for energy-consistent scenes (force node =
 # datum node, a pulse, the surface coupling) 0.1 of it does, from step 100 on.

@@ -1,13 +1,15 @@
 """The rigid, frictionless planar wall y = 0 (ALGORITHM.md section 5c), written from that text:
 kinematic enforcement on every node with a free u_y, the wall's dissipation from the impulse
 times the mean of the velocities before and after (booked at t_n as the kinetic energy is read), the bearing force (the body's own force on
-the held nodes), the foot radius, the contact radius and the bar's length.
+the held nodes), the foot radius, the contact radius, the bar's length, Taylor's undeformed
+length and the side's outline.
 SI units: forces N and energies J of the whole body (the symmetry factor s applied)."""
 from __future__ import annotations
 
 import numpy as np
 
 TOUCH = 1e-9     # a node lower than TOUCH h touches the wall (h the body's thickness)
+GROWTH = 0.005   # a section whose radius has grown by this fraction counts as deformed (5c)
 
 
 def impulse_work(impulse: np.ndarray, before: np.ndarray, after, first: bool
@@ -39,6 +41,11 @@ class RigidWall:
         self.bearing = 0.0                      # B_n = s sum of f_int on the held nodes, N
         self.max_bearing = 0.0
         self.max_foot = 0.0
+        outer = float(np.min(self.X))             # the side: the reference's outer surface
+        self.side = np.flatnonzero(self.X == outer)
+        self.side = self.side[np.argsort(self.Y[self.side], kind="stable")]
+        self.r0 = self.axis_x - outer
+        self.outline = ([], [])                   # (heights, radii) of the side at the last reading
 
     def launch(self, velocity: float) -> np.ndarray:
         """v_0: -velocity on every free u_y (m/s), per dof."""
@@ -71,10 +78,10 @@ class RigidWall:
         """The wall's dissipation at t_n, J."""
         return -(self.done + self.W_at_t_n)
 
-    def reading(self, u: np.ndarray) -> tuple[float, float, float, float]:
+    def reading(self, u: np.ndarray) -> tuple[float, float, float, float, float]:
         """The history's wall columns at u_n: foot_radius_m (the nodes that have touched the
         wall), bar_length_m (top minus bottom axis node), contact_radius_m (the nodes touching
-        it now) and bearing_force_N."""
+        it now), bearing_force_N and undeformed_length_m; keeps the side's outline."""
         on = self.Y + u[1::2] <= self.touch
         self.touched |= on
         r = self.axis_x - (self.X + u[0::2])
@@ -82,10 +89,31 @@ class RigidWall:
         foot = float(np.max(r[self.touched])) if self.touched.any() else 0.0
         self.max_foot = max(self.max_foot, foot)
         y = self.Y + u[1::2]
-        return foot, float(y[self.top] - y[self.bottom]), contact, self.bearing
+        rs, ys = r[self.side], y[self.side]
+        self.outline = ([float(z - y[self.bottom]) for z in ys], [float(x) for x in rs])
+        return (foot, float(y[self.top] - y[self.bottom]), contact, self.bearing,
+                self.undeformed_length(rs, ys))
+
+    def undeformed_length(self, rs: np.ndarray, ys: np.ndarray) -> float:
+        """Taylor's X (section 5c): scanning the side from the top down, the first node whose
+        radius reaches (1 + GROWTH) r0, and the point between it and the node above where the
+        radius is (1 + GROWTH) r0, linear in the current height; X is the top side node's
+        height minus that point's (0 when the top node has reached it, the whole side's height
+        when none has), m."""
+        threshold = (1.0 + GROWTH) * self.r0
+        top = len(rs) - 1
+        above = top
+        for k in range(top, -1, -1):
+            if rs[k] >= threshold:
+                if k == top:
+                    return 0.0
+                t = (rs[k] - threshold) / (rs[k] - rs[above])
+                return float(ys[top] - (ys[k] + t * (ys[above] - ys[k])))
+            above = k
+        return float(ys[top] - ys[0])
 
     def summary(self, v: np.ndarray, peak: float, release: float | None,
-                row: tuple[float, float, float, float], plate, eqps: float | None) -> dict:
+                row: tuple[float, float, float, float, float], plate, eqps: float | None) -> dict:
         """summary.json's wall (section 5c) from the last row's reading; v is v_{n+1/2} of the
         last step."""
         foot, length = row[0], row[1]
@@ -102,4 +130,6 @@ class RigidWall:
             "rebound_velocity_mps": rebound,
             "dissipated_energy_J": self.energy,
             "max_equivalent_plastic_strain": eqps,
+            "undeformed_length_m": row[4],
+            "final_outline": {"height_m": self.outline[0], "radius_m": self.outline[1]},
         }

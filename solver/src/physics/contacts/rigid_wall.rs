@@ -261,8 +261,8 @@ impl RigidWall {
     /// the foot, and measures the foot, the contact and the bar (section 5c).
     pub fn observe(&mut self, u: &[f64]) -> WallReading {
         let (mut contact, mut foot): (f64, f64) = (0.0, 0.0);
-        for (node, &[x0, y0]) in self.reference.iter().enumerate() {
-            let radius = self.axis_x - (x0 + u[2 * node]);
+        for (node, &[_, y0]) in self.reference.iter().enumerate() {
+            let radius = self.radius(node, u);
             if y0 + u[2 * node + 1] <= self.touch {
                 self.touched[node] = true;
                 contact = contact.max(radius);
@@ -289,7 +289,7 @@ impl RigidWall {
     /// it, 0 when the top one does (section 5c).
     pub fn undeformed_length(&self, u: &[f64]) -> f64 {
         let threshold = (1.0 + DEFORMED_GROWTH) * self.radius0;
-        let radius = |node: usize| self.axis_x - (self.reference[node][0] + u[2 * node]);
+        let radius = |node: usize| self.radius(node, u);
         let (Some(&bottom), Some(&top)) = (self.side.first(), self.side.last()) else {
             return 0.0;
         };
@@ -314,16 +314,20 @@ impl RigidWall {
     /// digitised Taylor profile gives them (section 5c).
     pub fn outline(&self, u: &[f64]) -> Vec<[f64; 2]> {
         let face = self.height(self.axis_nodes[0], u);
-        let radius = |node: usize| self.axis_x - (self.reference[node][0] + u[2 * node]);
         self.side
             .iter()
-            .map(|&node| [self.height(node, u) - face, radius(node)])
+            .map(|&node| [self.height(node, u) - face, self.radius(node, u)])
             .collect()
     }
 
     /// The largest foot radius and bearing force so far (m, N).
     pub fn maxima(&self) -> (f64, f64) {
         (self.max_foot, self.max_bearing)
+    }
+
+    /// The current distance of `node` from the axis at `u` (the half-width in plane strain), m.
+    fn radius(&self, node: usize, u: &[f64]) -> f64 {
+        self.axis_x - (self.reference[node][0] + u[2 * node])
     }
 
     /// The current height of `node` at `u`, m.
