@@ -42,12 +42,13 @@ const SURFACE: [&str; 4] = [
 const THERMAL: [&str; 2] = ["max_temperature_K", "heat_J"];
 /// The rigid wall's (`wall.KEY`; `release_time_s` and `rebound_velocity_mps` are null while
 /// the body is still on the wall at the end).
-const WALL: [&str; 10] = [
+const WALL: [&str; 11] = [
     "peak_force_N",
     "peak_step_force_N",
     "release_time_s",
     "final_length_m",
     "length_ratio",
+    "undeformed_length_m",
     "foot_radius_m",
     "foot_radius_ratio",
     "max_foot_radius_m",
