@@ -45,7 +45,7 @@ class RigidWall:
         self.side = np.flatnonzero(self.X == outer)
         self.side = self.side[np.argsort(self.Y[self.side], kind="stable")]
         self.r0 = self.axis_x - outer
-        self.outline = ([], [])                   # (heights, radii) of the side at the last reading
+        self.outline = (np.zeros(0), np.zeros(0))  # (heights, radii) of the side at the last reading
 
     def launch(self, velocity: float) -> np.ndarray:
         """v_0: -velocity on every free u_y (m/s), per dof."""
@@ -90,7 +90,7 @@ class RigidWall:
         self.max_foot = max(self.max_foot, foot)
         y = self.Y + u[1::2]
         rs, ys = r[self.side], y[self.side]
-        self.outline = ([float(z - y[self.bottom]) for z in ys], [float(x) for x in rs])
+        self.outline = (ys - y[self.bottom], rs)
         return (foot, float(y[self.top] - y[self.bottom]), contact, self.bearing,
                 self.undeformed_length(rs, ys))
 
@@ -131,5 +131,6 @@ class RigidWall:
             "dissipated_energy_J": self.energy,
             "max_equivalent_plastic_strain": eqps,
             "undeformed_length_m": row[4],
-            "final_outline": {"height_m": self.outline[0], "radius_m": self.outline[1]},
+            "final_outline": {"height_m": self.outline[0].tolist(),
+                              "radius_m": self.outline[1].tolist()},
         }

@@ -623,34 +623,38 @@ pub fn reference_history(
     }
 }
 
+/// A history file's `time_s` and `name` columns ([`read_csv_pair`]).
 pub fn read_csv_columns(path: &Path, name: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
-    let mut rd = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let headers = rd
-        .headers()
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .clone();
-    let ti = headers
+    read_csv_pair(path, "time_s", name)
+}
+
+/// Two numeric columns of a CSV file, `x` and `y`, row by row; every error names the file.
+pub fn read_csv_pair(path: &Path, x: &str, y: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let shown = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+    let mut rd = csv::Reader::from_path(path).map_err(|e| shown(&e))?;
+    let headers = rd.headers().map_err(|e| shown(&e))?.clone();
+    let xi = headers
         .iter()
-        .position(|h| h == "time_s")
-        .ok_or("no time_s column")?;
-    let vi = headers
+        .position(|h| h == x)
+        .ok_or_else(|| shown(&format!("no {x} column")))?;
+    let yi = headers
         .iter()
-        .position(|h| h == name)
-        .ok_or_else(|| format!("no column {name:?}"))?;
-    let (mut t, mut v) = (Vec::new(), Vec::new());
+        .position(|h| h == y)
+        .ok_or_else(|| shown(&format!("no column {y:?}")))?;
+    let (mut xs, mut ys) = (Vec::new(), Vec::new());
     for rec in rd.records() {
-        let rec = rec.map_err(|e| e.to_string())?;
+        let rec = rec.map_err(|e| shown(&e))?;
         let p = |i: usize| {
             rec.get(i)
                 .unwrap_or("")
                 .trim()
                 .parse::<f64>()
-                .map_err(|e| e.to_string())
+                .map_err(|e| shown(&e))
         };
-        t.push(p(ti)?);
-        v.push(p(vi)?);
+        xs.push(p(xi)?);
+        ys.push(p(yi)?);
     }
-    Ok((t, v))
+    Ok((xs, ys))
 }
 
 #[cfg(test)]

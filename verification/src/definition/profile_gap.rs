@@ -31,7 +31,8 @@ pub struct ProfileGapFile {
 /// The largest gap (m) between the outline of `summary` and the profile in `path`.
 pub fn profile_gap(summary: &Value, path: &Path) -> Result<f64, String> {
     let (heights, radii) = final_outline(summary)?;
-    let points = read_profile(path)?;
+    let (z, r) = crate::definition::check::read_csv_pair(path, "z_m", "radius_m")?;
+    let points: Vec<(f64, f64)> = z.into_iter().zip(r).collect();
     let top = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let gaps: Vec<f64> = points
         .iter()
@@ -85,35 +86,6 @@ fn radius_at(heights: &[f64], radii: &[f64], z: f64) -> Option<f64> {
         }
         Some(radii[k] + (radii[k + 1] - radii[k]) * (z - h0) / (h1 - h0))
     })
-}
-
-/// The profile's points `(z_m, radius_m)`, m.
-fn read_profile(path: &Path) -> Result<Vec<(f64, f64)>, String> {
-    let shown = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let mut rd = csv::Reader::from_path(path).map_err(|e| shown(&e))?;
-    let headers = rd.headers().map_err(|e| shown(&e))?.clone();
-    let index = |name: &str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| shown(&format!("no column {name:?}")))
-    };
-    let (zi, ri) = (index("z_m")?, index("radius_m")?);
-    let mut points = Vec::new();
-    for (line, rec) in rd.records().enumerate() {
-        let rec = rec.map_err(|e| shown(&e))?;
-        let number = |i: usize| {
-            rec.get(i).unwrap_or("").trim().parse::<f64>().map_err(|_| {
-                shown(&format!(
-                    "row {}: {:?} is not a number",
-                    line + 2,
-                    rec.get(i)
-                ))
-            })
-        };
-        points.push((number(zi)?, number(ri)?));
-    }
-    Ok(points)
 }
 
 #[cfg(test)]

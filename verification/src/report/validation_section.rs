@@ -121,7 +121,7 @@ fn summary(rows: &[&Comparison]) -> String {
                 .iter()
                 .map(|r| (f(&r.v, key) / f(&r.v, "measurement")).abs())
                 .sum();
-            percent_of(sum, n)
+            format!("{:.2} %", 100.0 * sum / n)
         };
         let against_zero = rs.iter().any(|r| f(&r.v, "measurement") == 0.0);
         let (mean_e, mean_area) = if against_zero {
@@ -133,8 +133,8 @@ fn summary(rows: &[&Comparison]) -> String {
             s,
             "| {q} | {} | {covered} | {} | {} |",
             rs.len(),
-            mean_e.trim_start_matches('+'),
-            mean_area.trim_start_matches('+'),
+            mean_e,
+            mean_area,
         );
     }
     s

@@ -289,19 +289,18 @@ impl RigidWall {
     /// it, 0 when the top one does (section 5c).
     pub fn undeformed_length(&self, u: &[f64]) -> f64 {
         let threshold = (1.0 + DEFORMED_GROWTH) * self.radius0;
-        let radius = |node: usize| self.radius(node, u);
         let (Some(&bottom), Some(&top)) = (self.side.first(), self.side.last()) else {
             return 0.0;
         };
         let mut above = top;
         for &node in self.side.iter().rev() {
-            let r = radius(node);
+            let r = self.radius(node, u);
             if r >= threshold {
                 if node == top {
                     return 0.0;
                 }
                 let (z, z_above) = (self.height(node, u), self.height(above, u));
-                let t = (r - threshold) / (r - radius(above));
+                let t = (r - threshold) / (r - self.radius(above, u));
                 return self.height(top, u) - (z + t * (z_above - z));
             }
             above = node;
