@@ -118,6 +118,11 @@ mod tests {
         path
     }
 
+    /// Bound of the gaps' checks, m: the gaps are differences of millimetre radii (one ulp
+    /// about 1e-18 m) through one interpolation, a few ulp; the wrong readings they must tell
+    /// apart miss by 1e-4 m and more (the fold's 5.5 mm against the silhouette's 5.95 mm).
+    const ROUND_OFF: f64 = 1e-15;
+
     #[test]
     fn the_gap_is_read_on_the_silhouette() {
         // At 0.25 mm the fold meets the height twice: the silhouette is the taper (5.95 mm), not
@@ -125,17 +130,17 @@ mod tests {
         // the model is 0.1 mm wider.
         let inside = profile(&[(0.25e-3, 5.85e-3), (5.0e-3, 4.9e-3), (15.0e-3, 3.9e-3)]);
         let gap = profile_gap(&summary(), &inside).unwrap();
-        assert!((gap - 1.0e-4).abs() < 1e-15, "{gap}");
+        assert!((gap - 1.0e-4).abs() < ROUND_OFF, "{gap}");
         // One point 0.3 mm outside, one 0.2 mm inside, the rest on the outline: 0.3 mm.
         let outside = profile(&[(0.25e-3, 5.95e-3), (5.0e-3, 5.3e-3), (15.0e-3, 3.8e-3)]);
         let gap = profile_gap(&summary(), &outside).unwrap();
-        assert!((gap - 3.0e-4).abs() < 1e-15, "{gap}");
+        assert!((gap - 3.0e-4).abs() < ROUND_OFF, "{gap}");
     }
 
     #[test]
     fn points_above_the_bar_are_left_out_and_none_is_an_error() {
         let longer = profile(&[(5.0e-3, 5.0e-3), (25.0e-3, 3.0e-3)]);
-        assert!((profile_gap(&summary(), &longer).unwrap() - 0.0).abs() < 1e-15);
+        assert!((profile_gap(&summary(), &longer).unwrap() - 0.0).abs() < ROUND_OFF);
         let above = profile(&[(25.0e-3, 3.0e-3)]);
         let e = profile_gap(&summary(), &above).unwrap_err();
         assert!(e.contains("no digitised point"), "{e}");
@@ -145,7 +150,7 @@ mod tests {
         lifted["wall"]["final_outline"]["height_m"] =
             serde_json::json!([0.6e-3, 0.5e-3, 10.0e-3, 20.0e-3]);
         let face = profile(&[(0.1e-3, 9.0e-3), (15.0e-3, 4.1e-3)]);
-        assert!((profile_gap(&lifted, &face).unwrap() - 1.0e-4).abs() < 1e-15);
+        assert!((profile_gap(&lifted, &face).unwrap() - 1.0e-4).abs() < ROUND_OFF);
         let e = profile_gap(&serde_json::json!({"wall": {}}), &longer).unwrap_err();
         assert!(e.starts_with("no metric"), "{e}");
     }
