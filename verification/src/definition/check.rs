@@ -10,6 +10,7 @@ use crate::definition::case::{
     series_scene_name, CheckFile, Compare, MeasureFile, Norm, Reduce, ReferenceFile, Refine,
     SeriesSpec,
 };
+use crate::definition::measure_error::MeasureError;
 use crate::definition::run_data::JobResult;
 use crate::definition::validation::{ValidationFile, ValidationRow};
 
@@ -74,6 +75,10 @@ pub struct CheckResult {
         skip_serializing_if = "Option::is_none"
     )]
     pub validation: Option<ValidationRow>,
+    /// The run did not write what the check reads ([`MeasureError::NotProduced`]): another
+    /// code's row shows it *not produced* (N/E), not FAIL. Not written to results.json.
+    #[serde(skip)]
+    pub not_produced: bool,
 }
 
 /// What a check can read: the results of its case's jobs and where reference files live.
@@ -134,6 +139,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         message: String::new(),
         known_failure: check.known_failure.clone(),
         validation: None,
+        not_produced: false,
     };
     if let Some(skip) = &check.skip {
         if skip.value.is_skip() {
@@ -156,8 +162,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         Some(h) => match reference_history(h, ctx) {
             Ok(v) => Some(v),
             Err(e) => {
-                result.message = format!("reference: {e}");
-                return result;
+                return not_evaluated(result, e.prefixed("reference: "));
             }
         },
         None => None,
@@ -165,11 +170,10 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     let computed = match measure_value(measure, ctx, ref_history.as_ref()) {
         Ok(v) => v,
         Err(e) => {
-            result.message = e;
             // The bound or reference value still shows (a failed run printed "<= -"), when
             // it does not come from the run itself.
             result.reference = run_free_reference(&reference, measure, ctx);
-            return result;
+            return not_evaluated(result, e);
         }
     };
     result.computed = Some(computed);
@@ -180,10 +184,7 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     };
     let r = match reference_value {
         Ok(v) => v,
-        Err(e) => {
-            result.message = format!("reference: {e}");
-            return result;
-        }
+        Err(e) => return not_evaluated(result, e.prefixed("reference: ")),
     };
     result.reference = Some(r);
     if let Some(v) = &check.validation {
@@ -191,6 +192,13 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
         return validated(result, &v.value, (computed, r), (measure, file), ctx);
     }
     judged(result, &tol, (computed, r), check.compare)
+}
+
+/// A FAIL without a value: `e`'s message, and whether it is *not produced*.
+fn not_evaluated(mut result: CheckResult, e: MeasureError) -> CheckResult {
+    result.not_produced = e.is_not_produced();
+    result.message = e.to_string();
+    result
 }
 
 /// The verdict of `computed` against reference `r` within tolerance `tol`, by `compare`.
@@ -250,15 +258,20 @@ fn validated(
     let on = |scene: &str| {
         let mut m = measure.clone();
         m.scene = Some(scene.to_string());
-        measure_value(&m, ctx, None).map_err(|e| format!("scene {scene}: {e}"))
+        measure_value(&m, ctx, None).map_err(|e| e.prefixed(&format!("scene {scene}: ")))
     };
     let parts = on(&spec.numerical.scene).and_then(|coarse| {
         let inputs = spec
             .input
             .iter()
             .map(|(name, d)| Ok((name.clone(), on(&d.scene)?)))
-            .collect::<Result<Vec<_>, String>>()?;
-        ValidationRow::new(spec, (simulation, measurement), coarse, inputs)
+            .collect::<Result<Vec<_>, MeasureError>>()?;
+        Ok(ValidationRow::new(
+            spec,
+            (simulation, measurement),
+            coarse,
+            inputs,
+        )?)
     });
     let parts = parts.map(|row| ValidationRow {
         measurement_file,
@@ -266,10 +279,7 @@ fn validated(
     });
     let row = match parts {
         Ok(row) => row,
-        Err(e) => {
-            result.message = format!("validation budget: {e}");
-            return result;
-        }
+        Err(e) => return not_evaluated(result, e.prefixed("validation budget: ")),
     };
     result.error_kind = ErrorKind::Absolute;
     result.error = Some(row.comparison_error);
@@ -291,33 +301,33 @@ fn validated(
     result
 }
 
-fn scene_name<'a>(m: &'a MeasureFile, ctx: &'a Context) -> Result<&'a str, String> {
+fn scene_name<'a>(m: &'a MeasureFile, ctx: &'a Context) -> Result<&'a str, MeasureError> {
     m.scene
         .as_deref()
         .or(ctx.default_scene)
-        .ok_or_else(|| "the measure names no scene and the case has not exactly one".to_string())
+        .ok_or_else(|| "the measure names no scene and the case has not exactly one".into())
 }
 
 fn job<'a>(
     name: &str,
     ctx: &'a Context,
-) -> Result<&'a crate::definition::run_data::RunData, String> {
+) -> Result<&'a crate::definition::run_data::RunData, MeasureError> {
     match ctx.results.get(name) {
-        None => Err(format!("no scene {name:?} in this case")),
-        Some(Err(e)) => Err(format!("scene {name} failed: {e}")),
+        None => Err(format!("no scene {name:?} in this case").into()),
+        Some(Err(e)) => Err(format!("scene {name} failed: {e}").into()),
         Some(Ok(d)) => Ok(d),
     }
 }
 
-fn column(h: &History, name: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+fn column(h: &History, name: &str) -> Result<(Vec<f64>, Vec<f64>), MeasureError> {
     let t = h
         .column("time_s")
         .ok_or("the history has no time_s column")?;
     let v = h.column(name).ok_or_else(|| {
-        format!(
+        MeasureError::NotProduced(format!(
             "no history column {name:?} (have: {})",
             h.columns.join(", ")
-        )
+        ))
     })?;
     Ok((t, v))
 }
@@ -345,25 +355,25 @@ pub fn measure_value(
     m: &MeasureFile,
     ctx: &Context,
     ref_history: Option<&(Vec<f64>, Vec<f64>)>,
-) -> Result<f64, String> {
+) -> Result<f64, MeasureError> {
     if m.selector_count() != 1 {
         return Err(crate::definition::case::ONE_SELECTOR.into());
     }
     let mut value = if let Some(name) = &m.metric {
         let d = job(scene_name(m, ctx)?, ctx)?;
         *d.metrics.get(name).ok_or_else(|| {
-            format!(
+            MeasureError::NotProduced(format!(
                 "no metric {name:?} (have: {})",
                 d.metrics.keys().cloned().collect::<Vec<_>>().join(", ")
-            )
+            ))
         })?
     } else if let Some(at) = &m.at {
         let d = job(scene_name(m, ctx)?, ctx)?;
-        let (t, v) = column(d.history().ok_or("the scene has no history")?, &at.column)?;
+        let (t, v) = column(history_of(d)?, &at.column)?;
         interpolate(&t, &v, at.time)
     } else if let Some(x) = &m.extreme {
         let d = job(scene_name(m, ctx)?, ctx)?;
-        let (t, v) = column(d.history().ok_or("the scene has no history")?, &x.column)?;
+        let (t, v) = column(history_of(d)?, &x.column)?;
         let w = x.window.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]);
         let sel: Vec<f64> = t
             .iter()
@@ -385,7 +395,7 @@ pub fn measure_value(
         }
     } else if let Some(e) = &m.error {
         let d = job(scene_name(m, ctx)?, ctx)?;
-        let (t, v) = column(d.history().ok_or("the scene has no history")?, &e.column)?;
+        let (t, v) = column(history_of(d)?, &e.column)?;
         let (rt, rv) = ref_history.ok_or("an error measure needs a reference history")?;
         let w = e.window.unwrap_or([f64::NEG_INFINITY, f64::INFINITY]);
         let pts: Vec<(f64, f64)> = rt
@@ -420,7 +430,7 @@ pub fn measure_value(
         let at = |x: &MeasureFile| measure_value(&inherit(x, m), ctx, ref_history);
         let (v, lo, hi) = (at(v)?, at(lo)?, at(hi)?);
         if !(hi > lo) {
-            return Err(format!("band: upper {hi:e} is not above lower {lo:e}"));
+            return Err(format!("band: upper {hi:e} is not above lower {lo:e}").into());
         }
         (v - lo) / (hi - lo)
     } else if let Some(q) = &m.order {
@@ -434,7 +444,10 @@ pub fn measure_value(
         series_change(q, ctx)?
     } else if let Some(p) = &m.profile_gap {
         let d = job(scene_name(m, ctx)?, ctx)?;
-        let summary = d.summary.as_ref().ok_or("the scene has no summary")?;
+        let summary = d
+            .summary
+            .as_ref()
+            .ok_or_else(|| MeasureError::NotProduced("the scene has no summary".into()))?;
         crate::definition::profile_gap::profile_gap(summary, &ctx.root.join(&p.file))?
     } else {
         unreachable!()
@@ -446,6 +459,12 @@ pub fn measure_value(
         value = value.abs();
     }
     Ok(value)
+}
+
+/// The run's history, or *not produced*.
+fn history_of(d: &crate::definition::run_data::RunData) -> Result<&History, MeasureError> {
+    d.history()
+        .ok_or_else(|| MeasureError::NotProduced("the scene has no history".into()))
 }
 
 fn inherit(inner: &MeasureFile, outer: &MeasureFile) -> MeasureFile {
@@ -461,7 +480,7 @@ pub fn series_values(
     series: &str,
     metric: &str,
     ctx: &Context,
-) -> Result<(Vec<f64>, Vec<f64>, Refine), String> {
+) -> Result<(Vec<f64>, Vec<f64>, Refine), MeasureError> {
     let s = ctx
         .series
         .get(series)
@@ -472,7 +491,7 @@ pub fn series_values(
         values.push(
             *d.metrics
                 .get(metric)
-                .ok_or_else(|| format!("no metric {metric:?}"))?,
+                .ok_or_else(|| MeasureError::NotProduced(format!("no metric {metric:?}")))?,
         );
     }
     Ok((s.levels.clone(), values, s.refine))
@@ -483,7 +502,7 @@ pub fn series_values(
 pub fn series_order(
     q: &crate::definition::case::SeriesQuantity,
     ctx: &Context,
-) -> Result<crate::definition::gci::Assessment, String> {
+) -> Result<crate::definition::gci::Assessment, MeasureError> {
     let (levels, f, _) = series_values(&q.series, &q.metric, ctx)?;
     if levels.len() < 3 {
         return Err("an order needs at least three levels".into());
@@ -495,14 +514,14 @@ pub fn series_order(
     {
         return Err("the levels must have a constant refinement ratio".into());
     }
-    crate::definition::gci::assess(&f, r, q.formal)
+    Ok(crate::definition::gci::assess(&f, r, q.formal)?)
 }
 
 /// Relative change from the first to the last level: `|f_first - f_last| / |f_last|`.
 pub fn series_change(
     q: &crate::definition::case::SeriesQuantity,
     ctx: &Context,
-) -> Result<f64, String> {
+) -> Result<f64, MeasureError> {
     let (_, f, _) = series_values(&q.series, &q.metric, ctx)?;
     match (f.first(), f.last()) {
         (Some(first), Some(last)) if f.len() >= 2 => Ok(((first - last) / last).abs()),
@@ -519,7 +538,11 @@ fn run_free_reference(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -
     reference_value(r, measure, ctx).ok()
 }
 
-fn reference_value(r: &ReferenceFile, measure: &MeasureFile, ctx: &Context) -> Result<f64, String> {
+fn reference_value(
+    r: &ReferenceFile,
+    measure: &MeasureFile,
+    ctx: &Context,
+) -> Result<f64, MeasureError> {
     let sources = [
         r.value.is_some(),
         r.table.is_some(),
@@ -602,16 +625,16 @@ pub fn table_text(
 pub fn reference_history(
     h: &crate::definition::case::HistoryRef,
     ctx: &Context,
-) -> Result<(Vec<f64>, Vec<f64>), String> {
+) -> Result<(Vec<f64>, Vec<f64>), MeasureError> {
     match (&h.file, &h.scene) {
-        (Some(f), None) => read_csv_columns(&ctx.root.join(f), &h.column),
+        (Some(f), None) => Ok(read_csv_columns(&ctx.root.join(f), &h.column)?),
         (None, Some(s)) => {
             let d = job(s, ctx)?;
             let hist = d
                 .histories
                 .get(&h.column)
                 .or_else(|| d.history())
-                .ok_or_else(|| format!("scene {s} has no history"))?;
+                .ok_or_else(|| MeasureError::NotProduced(format!("scene {s} has no history")))?;
             let name = if hist.columns.iter().any(|c| c == &h.column) {
                 h.column.as_str()
             } else {
@@ -693,5 +716,57 @@ mod tests {
             crate::definition::check_row::CheckRow::of(&r).reference,
             "<= 1.000000e-4"
         );
+    }
+
+    /// *Not produced* is a type, not words: a key or column the run did not write (a summary
+    /// without the metric, a history without the column) marks the row; a scene that failed, a
+    /// reference file without the key or a message that merely quotes "no metric" does not.
+    #[test]
+    fn what_the_run_did_not_write_is_marked_not_produced() {
+        let check = |measure: &str, reference: &str| -> CheckFile {
+            serde_saphyr::from_str(&format!(
+                "id: k\ntitle: t\nmeasure: {measure}\nreference: {reference}\n\
+                 tolerance: {{absolute: 1.0, reason: r}}\n"
+            ))
+            .unwrap()
+        };
+        let mut run = crate::definition::run_data::RunData::default();
+        run.metrics.insert("peak_contact_force_N".into(), 1.0);
+        let mut results = BTreeMap::new();
+        results.insert("plate".to_string(), Ok(std::sync::Arc::new(run)));
+        results.insert(
+            "gone".to_string(),
+            Err("no metric words in a crash".to_string()),
+        );
+        let series = BTreeMap::new();
+        let ctx = Context {
+            results: &results,
+            series: &series,
+            root: Path::new("/nonexistent"),
+            default_scene: None,
+        };
+        let literal = "{kind: analytical, value: 1.0, source: s}";
+        let marked = |m: &str, r: &str| {
+            let r = evaluate(&check(m, r), &ctx);
+            assert_eq!(r.status, Status::Fail, "{}", r.message);
+            r.not_produced
+        };
+        assert!(marked("{scene: plate, metric: impulse_Ns}", literal));
+        assert!(marked(
+            "{scene: plate, at: {column: mid_uy_m, time: 0.0}}",
+            literal
+        ));
+        let from_run = "{kind: analytical, metric: {scene: plate, metric: impulse_Ns}, source: s}";
+        assert!(marked(
+            "{scene: plate, metric: peak_contact_force_N}",
+            from_run
+        ));
+        assert!(!marked("{scene: gone, metric: impulse_Ns}", literal));
+        assert!(!marked("{scene: absent, metric: impulse_Ns}", literal));
+        let json = "{kind: analytical, json: {file: no.json, key: impulse_Ns}, source: s}";
+        assert!(!marked(
+            "{scene: plate, metric: peak_contact_force_N}",
+            json
+        ));
     }
 }

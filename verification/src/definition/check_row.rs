@@ -96,6 +96,7 @@ mod tests {
             message: String::new(),
             known_failure: known.then(|| "why".to_string()),
             validation: None,
+            not_produced: false,
         }
     }
 

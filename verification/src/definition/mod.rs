@@ -11,6 +11,7 @@ pub mod check_row;
 pub mod gci;
 pub mod history_csv;
 pub mod lint;
+pub mod measure_error;
 pub mod profile_gap;
 pub mod repo;
 pub mod run_data;

@@ -156,6 +156,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         message: message.clone(),
         known_failure: None,
         validation: None,
+        not_produced: false,
     };
     let (id, title, requirement_id, requirement, category, heavy) = match &b.parsed {
         Some(c) => (

@@ -33,5 +33,6 @@ pub fn row(
         },
         known_failure: None,
         validation: None,
+        not_produced: false,
     }
 }

@@ -44,14 +44,9 @@ pub fn judge(
             _ => None,
         })
     });
-    let not_produced = r.status == Status::Fail
-        && r.computed.is_none()
-        && ["no metric", "no history column", "has no history"]
-            .iter()
-            .any(|w| r.message.contains(w));
     if let Some(why) = why {
         not_expressible(r, why);
-    } else if not_produced {
+    } else if r.not_produced {
         let why = format!("not produced by {code}: {}", r.message);
         not_expressible(r, why);
     }
