@@ -5,7 +5,8 @@
 //! - `--code fake` evaluates the same checks on what the adapter wrote: OK where it agrees,
 //!   FAIL where it does not (exit 1), FAIL* where its `expected.yaml` declares it (exit 0);
 //!   a key it did not write, a builtin's measure and a reference from a scene it refused are
-//!   N/E, never OK or FAIL;
+//!   N/E, never OK or FAIL; so is a check against the fake code's own stored run (kind
+//!   `other code`), which impact's row evaluates;
 //! - the adapter sees the resolved scene (`scene.yaml` and `scene.json`) and its kept files
 //!   land in `codes/fake/runs/`;
 //! - exit status 3 makes every check of the scene N/E with the adapter's line; a crash, a
@@ -72,6 +73,11 @@ checks:
     measure: {scene: plate, error: {column: mid_uy_m, norm: linf}}
     reference: {kind: invariant, value: 0.0, history: {scene: refused, column: mid_uy_m}, source: \"the same plate\"}
     tolerance: {absolute: 0.05, reason: \"the step's effect on impact's deflection, measured 3.8e-3 (about 13x); the fake code's status is what is read\"}
+  - id: against-fake
+    title: the impulse against the fake code's stored run
+    measure: {scene: plate, metric: impulse_Ns}
+    reference: {kind: other code, code: fake, json: {file: reference-data/codes/fake/plate/summary.json, key: impulse_Ns}, source: \"the fake code's stored run\"}
+    tolerance: {relative: 1.0e-2, reason: \"impact's pulse ends within a step (3.5e-3 here)\"}
   - id: builtin
     title: impact's own kernel
     measure: {scene: law, metric: round_trip_max_rel}
@@ -126,6 +132,12 @@ fn scratch(expected: &str, timeout_s: f64) -> PathBuf {
     )
     .unwrap();
     std::fs::write(fake.join("expected.yaml"), expected).unwrap();
+    // The fake code's stored run, the reference of `against-fake` (kind other code).
+    let stored = root.join("reference-data/codes/fake/plate");
+    std::fs::create_dir_all(&stored).unwrap();
+    std::fs::write(stored.join("summary.json"), "{\"impulse_Ns\": 0.1}").unwrap();
+    std::fs::write(stored.join("adapter.json"), "{\"code\": \"fake\"}").unwrap();
+    std::fs::write(stored.join("../PROVENANCE.md"), "the fake code's run\n").unwrap();
     std::fs::create_dir_all(root.join("tmp")).unwrap();
     root
 }
@@ -194,12 +206,16 @@ fn the_same_checks_are_evaluated_on_the_other_code() {
         "{stdout}"
     );
     assert!(stdout.contains("not produced by fake"), "{stdout}");
+    // A reference of kind other code: evaluated on impact, N/E on the code whose run it is.
+    assert_eq!(status(&stdout, "impact", "against-fake"), "OK");
+    assert_eq!(status(&stdout, "fake", "against-fake"), "N/E");
+    assert!(stdout.contains("fake's own stored run"), "{stdout}");
     let results = std::fs::read_to_string(root.join("out/results.json")).unwrap();
     let results: serde_json::Value = serde_json::from_str(&results).unwrap();
     assert_eq!(results["cases"][0]["code"], "impact");
     assert_eq!(results["codes"][0]["code"], "fake");
     assert_eq!(results["codes"][0]["cases"][0]["code"], "fake");
-    assert_eq!(results["codes"][0]["counts"]["not_expressible"], 3);
+    assert_eq!(results["codes"][0]["counts"]["not_expressible"], 4);
     // The builtin only measured is impact's own computation: not run for the other code.
     assert!(results["cases"][0]["metrics"]["law"].is_object());
     assert!(results["codes"][0]["cases"][0]["metrics"]["law"].is_null());

@@ -87,6 +87,11 @@ pub enum RefKind {
     /// Published results of other codes for a benchmark of the field (the band they span).
     #[serde(rename = "other codes")]
     OtherCodes,
+    /// A run of another production code through its adapter (adapters/), stored with the
+    /// adapter's record under reference-data/codes/<code>/ (issue 38): a reference that shares
+    /// none of this project's readings, as the independent Python FE does.
+    #[serde(rename = "other code")]
+    OtherCode,
     /// A measurement of a physical test (validation, ASME V&V 20): the check carries its
     /// `validation` budget and passes when `|E| <= k u_val`.
     #[serde(rename = "experiment")]
@@ -104,6 +109,7 @@ impl RefKind {
             RefKind::Regression => "regression",
             RefKind::Acceptance => "acceptance",
             RefKind::OtherCodes => "other codes",
+            RefKind::OtherCode => "other code",
             RefKind::Experiment => "experiment",
         }
     }
@@ -435,6 +441,11 @@ pub struct ReferenceFile {
     /// A JSON value under reference-data/ (e.g. the independent code's summary.json).
     #[serde(default)]
     pub json: Option<JsonRef>,
+    /// The code whose stored run the reference reads (kind `other code` only): its `json` or
+    /// `history` file lies in a folder of reference-data/codes/<code>/ beside the adapter's
+    /// `adapter.json`.
+    #[serde(default)]
+    pub code: Option<String>,
     /// Multiplies the reference value (unit conversion, e.g. 1e-3 for mm -> m).
     #[serde(default)]
     pub scale: Option<f64>,

@@ -359,7 +359,10 @@ fn lint_reference(
         })
     };
     if rv.kind.is_none() {
-        push("the reference has no kind (analytical | independent code | paper | calibration | invariant | regression | acceptance | other codes | experiment)".into());
+        push("the reference has no kind (analytical | independent code | paper | calibration | invariant | regression | acceptance | other codes | other code | experiment)".into());
+    }
+    for m in crate::definition::other_code_reference::findings(&repo.root, rv) {
+        push(m);
     }
     if rv.source.as_deref().is_none_or(|s| s.trim().is_empty()) {
         push("the reference has no source line".into());

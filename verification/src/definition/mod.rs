@@ -12,6 +12,7 @@ pub mod gci;
 pub mod history_csv;
 pub mod lint;
 pub mod measure_error;
+pub mod other_code_reference;
 pub mod profile_gap;
 pub mod repo;
 pub mod run_data;

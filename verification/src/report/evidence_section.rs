@@ -57,6 +57,7 @@ fn kinds_table(results: &Value) -> String {
             "independent code" => "code-to-code (same discrete method)",
             "regression" => "regression (pinned earlier result)",
             "other codes" => "benchmark: the band of other codes' published results",
+            "other code" => "code-to-code: another production code's run (no shared readings)",
             "experiment" => "**validation** against measurements (V&V 20: within 2 u_val)",
             _ => "",
         };
@@ -168,7 +169,7 @@ pub fn markdown(results: &Value, evidence_page: Option<&str>) -> String {
     s.push_str(&kinds_table(results));
     s.push_str(
         "\n## Discriminating power\n\nEvery evidence check (kinds paper, calibration, invariant, \
-         acceptance, independent code, other codes, experiment, and analytical bounds) re-evaluated on what trivial or wrong models give: a value and whether the \
+         acceptance, independent code, other codes, other code, experiment, and analytical bounds) re-evaluated on what trivial or wrong models give: a value and whether the \
          check would pass (against a measurement, within our run's 2 u_val). A check that a trivial model (a rigid wall, the elastic plate in an \
          elasto-plastic row) passes cannot tell a plate from no plate; the invariants are \
          bookkeeping of the method and hold for any plate (they discriminate slips in the \

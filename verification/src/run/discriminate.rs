@@ -1,5 +1,5 @@
 //! Discriminating power (issue 10, section 1): every evidence check of a case (reference kind
-//! paper, calibration, invariant, acceptance, independent code, other codes or experiment) re-evaluated on the results of trivial or
+//! paper, calibration, invariant, acceptance, independent code, other codes, other code or experiment) re-evaluated on the results of trivial or
 //! wrong models declared in the case's `wrong_models`: a rigid wall (closed form), another
 //! scene read in place of one (the elastic plate in the elasto-plastic row), or the case's
 //! scenes re-run with overrides (the plate with E x 0.5 and x 2). A check that a trivial
@@ -17,7 +17,7 @@ use crate::definition::run_data::{JobResult, RunData};
 /// The reference kinds whose checks the table covers (analytical: the physics bounds of
 /// issue 27, e.g. the rigid-plastic band, whose wrong models must fail; independent code:
 /// the Python FE's run of the unmodified scene, which a wrong model's run must miss).
-pub const KINDS: [RefKind; 8] = [
+pub const KINDS: [RefKind; 9] = [
     RefKind::Analytical,
     RefKind::IndependentCode,
     RefKind::Paper,
@@ -25,6 +25,7 @@ pub const KINDS: [RefKind; 8] = [
     RefKind::Invariant,
     RefKind::Acceptance,
     RefKind::OtherCodes,
+    RefKind::OtherCode,
     RefKind::Experiment,
 ];
 

@@ -1,15 +1,16 @@
 //! A check's row on another code (issue 38): the same check, reference and tolerance, and
-//! three rules of its own. A check that measures `impact`'s own computation (a builtin: a
+//! rules of its own. A check that measures `impact`'s own computation (a builtin: a
 //! kernel, a manufactured solution) is *not expressible* (N/E) on another code; so is one
 //! that reads a scene the code refused (its adapter's exit status 3, or no folder under
 //! `--results-from`), and one that reads a column or key the code did not write (*not
-//! produced*). The known failures are the code's own (its adapter's `expected`), never the
+//! produced*), and one whose reference is the same code's own stored run (kind `other
+//! code`). The known failures are the code's own (its adapter's `expected`), never the
 //! case's, which are `impact`'s.
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use crate::codes::is_not_expressible;
-use crate::definition::case::{Case, CheckFile, MeasureFile};
+use crate::definition::case::{Case, CheckFile, MeasureFile, RefKind};
 use crate::definition::check::{CheckResult, Status};
 use crate::definition::run_data::JobResult;
 
@@ -44,6 +45,14 @@ pub fn judge(
             _ => None,
         })
     });
+    // A code compared with its own stored run proves nothing about either.
+    let own = k.reference.as_ref().and_then(|r| {
+        let r = &r.value;
+        (r.kind == Some(RefKind::OtherCode) && r.code.as_deref() == Some(code)).then(|| {
+            format!("not expressible: the reference is {code}'s own stored run, not another code's")
+        })
+    });
+    let why = own.or(why);
     if let Some(why) = why {
         not_expressible(r, why);
     } else if r.not_produced {
