@@ -8,6 +8,7 @@ pub mod broken;
 pub mod case;
 pub mod check;
 pub mod check_row;
+pub mod csv_columns;
 pub mod gci;
 pub mod history_csv;
 pub mod lint;

@@ -33,7 +33,7 @@ pub struct ProfileGapFile {
 /// The largest gap (m) between the outline of `summary` and the profile in `path`.
 pub fn profile_gap(summary: &Value, path: &Path) -> Result<f64, MeasureError> {
     let (heights, radii) = final_outline(summary)?;
-    let (z, r) = crate::definition::check::read_csv_pair(path, "z_m", "radius_m")?;
+    let (z, r) = crate::definition::csv_columns::read_csv_pair(path, "z_m", "radius_m")?;
     let points: Vec<(f64, f64)> = z.into_iter().zip(r).collect();
     let top = heights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let gaps: Vec<f64> = points

@@ -64,12 +64,13 @@ pub fn reference_ratings(c: &serde_json::Value, runs: &Path, root: &Path) -> Vec
                 Some(_) => root.join(r),
                 None => dir.join(r).join("history.csv"),
             };
-            let Ok((ta, va)) = crate::definition::check::read_csv_columns(&path, col) else {
+            let Ok((ta, va)) = crate::definition::csv_columns::read_csv_columns(&path, col) else {
                 continue;
             };
             for s in strings(&p["scenes"]) {
                 let run = dir.join(s).join("history.csv");
-                let Ok((tb, vb)) = crate::definition::check::read_csv_columns(&run, col) else {
+                let Ok((tb, vb)) = crate::definition::csv_columns::read_csv_columns(&run, col)
+                else {
                     continue;
                 };
                 let rated = crate::review::diff::rating_in_common_window(&ta, &va, &tb, &vb)
@@ -133,7 +134,7 @@ fn history_plots(p: &serde_json::Value, dir: &Path, root: &Path) -> Vec<(String,
         None => Axis::new("time", "s"),
     };
     let load = |path: &Path, col: &str, scale: f64| {
-        crate::definition::check::read_csv_columns(path, col)
+        crate::definition::csv_columns::read_csv_columns(path, col)
             .map(|(t, v)| t.iter().zip(&v).map(|(t, v)| (*t, v * scale)).collect())
     };
     if let Some(col) = p["column"].as_str() {

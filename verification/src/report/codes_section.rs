@@ -308,7 +308,7 @@ fn plots(case: &Value, codes: &[Value], (from, root): (&Path, &Path), out: &Path
                 .filter_map(Value::as_str)
             {
                 if let Ok((t, v)) =
-                    crate::definition::check::read_csv_columns(&root.join(r), column)
+                    crate::definition::csv_columns::read_csv_columns(&root.join(r), column)
                 {
                     series.push((
                         format!("reference {r}"),
