@@ -3,12 +3,21 @@ from the same sources (target/release/impact, or $IMPACT_BIN), and small scenes.
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 from pathlib import Path
 
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
+
+# Ctrl-C is what the interrupt tests send. A shell that starts a job in the background without
+# job control (`cmd &` in a script, a CI runner's nohup) starts it with SIGINT ignored, and
+# Python then installs no KeyboardInterrupt handler, so those tests would fail (or a run meant
+# to be stopped would go on for hours). The tests restore the terminal's behaviour; a handler
+# set here is not inherited by the CLI and scripts they start, which get the default again.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 # Small elasto-plastic impact (20 x 4 q4-sri, fixed dt, probe A): ~0.05 s a run.
 SMALL = ROOT / "scripts" / "ci-scenes" / "impact-plastic.yaml"
 
