@@ -27,6 +27,13 @@ pub fn judge(
     r.known_failure = expected
         .get(&format!("{}/{}/{}", case.suite, case.name, k.id))
         .cloned();
+    // A code compared with its own stored run proves nothing about either.
+    let own = k.reference.as_ref().and_then(|r| {
+        let r = &r.value;
+        (r.kind == Some(RefKind::OtherCode) && r.code.as_deref() == Some(code)).then(|| {
+            format!("not expressible: the reference is {code}'s own stored run, not another code's")
+        })
+    });
     let mut read = Vec::new();
     scenes_read(&k.measure.value, case.default_scene(), results, &mut read);
     let builtin = read.iter().find_map(|name| {
@@ -39,20 +46,12 @@ pub fn judge(
     // (a surface coupling compared with the nodal one on the same plate); a builtin's
     // reference (a closed form, a modal solution) stays what it is.
     reference_scenes_read(k, case, results, &mut read);
-    let why = builtin.or_else(|| {
+    let why = own.or(builtin).or_else(|| {
         read.iter().find_map(|name| match results.get(name) {
             Some(Err(e)) if is_not_expressible(e) => Some(e.clone()),
             _ => None,
         })
     });
-    // A code compared with its own stored run proves nothing about either.
-    let own = k.reference.as_ref().and_then(|r| {
-        let r = &r.value;
-        (r.kind == Some(RefKind::OtherCode) && r.code.as_deref() == Some(code)).then(|| {
-            format!("not expressible: the reference is {code}'s own stored run, not another code's")
-        })
-    });
-    let why = own.or(why);
     if let Some(why) = why {
         not_expressible(r, why);
     } else if r.not_produced {
