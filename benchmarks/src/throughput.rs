@@ -19,6 +19,10 @@
 //! last step's increment does not help as it does in a run (a copper Taylor bar: 3.5 iterations
 //! per batched call against 11.6, the whole run 7.2 -> 2.4 s); what remains is the iterations'
 //! count and each one's `ln`, two `exp` and two divisions per lane.
+//! On an Intel Xeon with full-width AVX-512 units (2026-11-30, full size, one thread) each law
+//! in its own out-of-line function, on whole 512-bit registers (the shared function had run
+//! the 8 lanes in pieces of 2, 2 and 4): Cowper-Symonds 113.9 -> 87.5 ns, Johnson-Cook with
+//! heating 304.0 -> 213.3 ns, the same bits (`docs/benchmarks.md`).
 //!
 //! The plane finite kernel (2026-11-26, quick, min of 3 runs interleaved with the previous
 //! binary, other builds on the second core): 53.4 ns against 29.7 ns small-strain, 1.80x
