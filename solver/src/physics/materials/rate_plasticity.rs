@@ -186,29 +186,29 @@ impl ViscoPlastic {
     }
 
     /// Cowper-Symonds' increment `dk` of the rate-dependent consistency condition (module
-    /// documentation) per lane, for the arguments `a` ([`IncrementSolve`]); 0 where the trial
+    /// documentation) per lane, for the arguments `a` and the law's constants `law` ([`IncrementSolve`]); 0 where the trial
     /// stress does not exceed the static flow stress. Inlined into [`IncrementSolve::run`],
     /// which runs out of line, compiled once per instruction set and exponent kind
     /// ([`dispatch_out_of_line`]).
     #[inline(always)]
     fn cowper_symonds<R: Real, P: Exponent, L: Exponent>(
         &self,
-        a: &IncrementSolve<R, CowperSymondsLaw<P, L>>,
+        a: &IncrementArgs<R>,
+        law: CowperSymondsLaw<P, L>,
     ) -> R {
-        let IncrementSolve {
+        let IncrementArgs {
             q,
             k,
             static_flow,
             three_mu,
-            law:
-                CowperSymondsLaw {
-                    d,
-                    exponent,
-                    power,
-                    power_less,
-                },
             ..
         } = *a;
+        let CowperSymondsLaw {
+            d,
+            exponent,
+            power,
+            power_less,
+        } = law;
         let running = q.gt(static_flow);
         let zero = R::splat(0.0);
         let scale = d * self.dt;
@@ -240,17 +240,17 @@ impl ViscoPlastic {
     /// Johnson-Cook's increment `dk`, as [`ViscoPlastic::cowper_symonds`] (compiled once per
     /// instruction set).
     #[inline(always)]
-    fn johnson_cook<R: Real>(&self, a: &IncrementSolve<R, JohnsonCookLaw>) -> R {
-        let IncrementSolve {
+    fn johnson_cook<R: Real>(&self, a: &IncrementArgs<R>, law: JohnsonCookLaw) -> R {
+        let IncrementArgs {
             q,
             k,
             static_flow,
             three_mu,
             softening,
             last_increment,
-            law: JohnsonCookLaw { c, reference_rate },
             ..
         } = *a;
+        let JohnsonCookLaw { c, reference_rate } = law;
         let running = q.gt(static_flow);
         let zero = R::splat(0.0);
         let slow = reference_rate * self.dt;
@@ -288,6 +288,14 @@ impl ViscoPlastic {
 /// function's 43 vector divisions 24 ran on 128-bit registers, 16 on 256-bit, 3 on 512-bit).
 #[derive(Clone, Copy)]
 struct IncrementSolve<'a, R, L> {
+    args: IncrementArgs<'a, R>,
+    /// The law's constants.
+    law: L,
+}
+
+/// What every law's increment reads ([`IncrementSolve`]).
+#[derive(Clone, Copy)]
+struct IncrementArgs<'a, R> {
     model: &'a ViscoPlastic,
     /// Trial von Mises stress, Pa.
     q: R,
@@ -301,35 +309,6 @@ struct IncrementSolve<'a, R, L> {
     softening: R,
     /// Where Johnson-Cook's Newton starts: the last step's rate times this step (-).
     last_increment: R,
-    /// The law's constants.
-    law: L,
-}
-
-impl<'a, R> IncrementSolve<'a, R, ()> {
-    /// The same arguments for the law `law`.
-    #[inline(always)]
-    fn with<L>(self, law: L) -> IncrementSolve<'a, R, L> {
-        let IncrementSolve {
-            model,
-            q,
-            k,
-            static_flow,
-            three_mu,
-            softening,
-            last_increment,
-            ..
-        } = self;
-        IncrementSolve {
-            model,
-            q,
-            k,
-            static_flow,
-            three_mu,
-            softening,
-            last_increment,
-            law,
-        }
-    }
 }
 
 /// Cowper-Symonds' constants: `D` (1/s), the exponent `q` (-) and `x^q`, `x^(q - 1)` as
@@ -353,7 +332,7 @@ impl<R: Real, P: Exponent, L: Exponent> Kernel for IncrementSolve<'_, R, CowperS
     type Output = R;
     #[inline(always)]
     fn run(self) -> R {
-        self.model.cowper_symonds(&self)
+        self.args.model.cowper_symonds(&self.args, self.law)
     }
 }
 
@@ -361,7 +340,7 @@ impl<R: Real> Kernel for IncrementSolve<'_, R, JohnsonCookLaw> {
     type Output = R;
     #[inline(always)]
     fn run(self) -> R {
-        self.model.johnson_cook(&self)
+        self.args.model.johnson_cook(&self.args, self.law)
     }
 }
 
@@ -545,7 +524,7 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
     }
     #[inline(always)]
     fn plastic_increment(&self, q: R, k: R, flow_at_k: R, three_mu: f64) -> R {
-        let args = IncrementSolve {
+        let args = IncrementArgs {
             model: self.model,
             q,
             k,
@@ -553,7 +532,6 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
             three_mu,
             softening: self.softening,
             last_increment: self.last_increment,
-            law: (),
         };
         let isa = self.model.isa;
         match self.model.law {
@@ -567,7 +545,7 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
                             power: Whole(p),
                             power_less: Whole(l),
                         };
-                        dispatch_out_of_line(isa, args.with(law))
+                        dispatch_out_of_line(isa, IncrementSolve { args, law })
                     }
                     (power, power_less) => {
                         let law = CowperSymondsLaw {
@@ -576,13 +554,16 @@ impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
                             power,
                             power_less,
                         };
-                        dispatch_out_of_line(isa, args.with(law))
+                        dispatch_out_of_line(isa, IncrementSolve { args, law })
                     }
                 }
             }
             RateLaw::JohnsonCook {
                 c, reference_rate, ..
-            } => dispatch_out_of_line(isa, args.with(JohnsonCookLaw { c, reference_rate })),
+            } => {
+                let law = JohnsonCookLaw { c, reference_rate };
+                dispatch_out_of_line(isa, IncrementSolve { args, law })
+            }
         }
     }
     /// `q_new dk`: the returned stress (the dynamic flow stress) on the increment, the
