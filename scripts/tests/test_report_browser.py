@@ -49,7 +49,7 @@ def test_a_page_whose_figures_render_and_tables_fit_passes(tmp_path: Path):
     out = rbc.check_page(html, tmp_path / "screens")
     assert out.problems == []
     assert (out.imgs, out.svgs, out.tables, out.boxed) == (1, 1, 2, 1)
-    # The whole page and one PNG per h2 section, each a real PNG.
+    # The page's top and one PNG per h2 section, each a real PNG.
     assert len(out.screenshots) == 3
     for png in out.screenshots:
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
