@@ -22,6 +22,7 @@ fn _impact(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RunError", py.get_type::<errors::RunError>())?;
     m.add("VerifyError", py.get_type::<errors::VerifyError>())?;
     m.add_function(wrap_pyfunction!(simulate::read_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::resolved_scene, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(verify::verify, m)?)?;
     m.add_function(wrap_pyfunction!(uq::read_study, m)?)?;

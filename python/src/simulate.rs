@@ -20,6 +20,14 @@ pub fn read_scene(path: PathBuf) -> PyResult<String> {
         .map_err(|source| to_py(impact_solver::Error::ReadScene { path, source }))
 }
 
+/// The scene file at `path` as the text `Scene::to_yaml` writes of it (every key with its
+/// value, the defaults written out: what another code's adapter reads, `adapters/README.md`);
+/// the CLI's message when the file is refused. The scene schema's test validates these texts.
+#[pyfunction]
+pub fn resolved_scene(path: PathBuf) -> PyResult<String> {
+    Scene::from_file(&path).map(|s| s.to_yaml()).map_err(to_py)
+}
+
 /// A finished run: `summary.json`'s text and the history's columns in file order.
 type NativeRun<'py> = (String, Vec<String>, Vec<Bound<'py, PyArray1<f64>>>);
 

@@ -14,6 +14,8 @@
 //! - Both geometries: every combination of either kinematics (but the stiffness matrices) also
 //!   in the axisymmetric geometry, and the Table 1 plate under surface contact as a round
 //!   plate, in small and in finite kinematics.
+//! - Every model the factory builds above runs the function compiled for its (formulation,
+//!   material) pair in the solver crate (`AnyModel::forces_compiled_here`).
 
 use std::path::Path;
 
@@ -95,6 +97,17 @@ fn trace(
     u: &[Vec<f64>],
 ) -> Vec<Vec<String>> {
     let mut model = build_any(s, mesh, kernel, path).unwrap();
+    // Every model the factory builds runs the function compiled for its pair in the solver
+    // crate (`time_loop::internal_forces`), the code `impact` runs: a pair missing from that
+    // list would run a copy compiled here, and the benchmarks would time other code.
+    assert!(
+        model.forces_compiled_here(),
+        "{} {kernel:?} {:?} {:?} {:?}: no function compiled in the solver crate for this pair",
+        s.mesh.element.name(),
+        s.material.plasticity.as_ref().map(|p| p.rate.is_some()),
+        s.kinematics,
+        s.geometry
+    );
     model.set_time_step(RATE_DT);
     u.iter().map(|u| trace_of(&mut *model, u)).collect()
 }

@@ -13,6 +13,7 @@ use crate::lanes::simd::KernelPath;
 use crate::mesh::PlateMesh;
 use crate::physics::elements::element::{ElementEnergy, Formulation};
 use crate::physics::materials::material::ConstitutiveModel;
+use crate::time_loop::internal_forces::is_compiled_here;
 use crate::time_loop::model::{build_on, Kernel, UseModel};
 use crate::time_loop::plate_model::PlateModel;
 
@@ -34,6 +35,10 @@ pub trait AnyModel {
     fn state_debug(&self, e: usize, p: usize) -> String;
     /// Heap bytes of the whole model and of its geometry alone ([`PlateModel::heap_bytes`]).
     fn heap_bytes(&self) -> (usize, usize);
+    /// Whether its internal forces run the function compiled for its (formulation, material)
+    /// pair in this crate (`time_loop::internal_forces`), the code `impact` runs, rather than
+    /// a copy compiled in the caller's crate.
+    fn forces_compiled_here(&self) -> bool;
 }
 
 impl<F: Formulation, M: ConstitutiveModel> AnyModel for PlateModel<F, M> {
@@ -57,6 +62,9 @@ impl<F: Formulation, M: ConstitutiveModel> AnyModel for PlateModel<F, M> {
     }
     fn heap_bytes(&self) -> (usize, usize) {
         (PlateModel::heap_bytes(self), self.formulation.heap_bytes())
+    }
+    fn forces_compiled_here(&self) -> bool {
+        is_compiled_here::<F, M>()
     }
 }
 
