@@ -102,9 +102,9 @@ fn trace(
     // list would run a copy compiled here, and the benchmarks would time other code.
     assert!(
         model.forces_compiled_here(),
-        "{} {kernel:?} {:?} {:?} {:?}: no function compiled in the solver crate for this pair",
+        "{} {kernel:?} (rate-dependent: {}) {:?} {:?}: no function compiled in the solver crate for this pair",
         s.mesh.element.name(),
-        s.material.plasticity.as_ref().map(|p| p.rate.is_some()),
+        s.material.plasticity.as_ref().is_some_and(|p| p.rate.is_some()),
         s.kinematics,
         s.geometry
     );
