@@ -78,14 +78,15 @@ def scene_files() -> list[tuple[str, dict]]:
 SCENES = scene_files()
 
 
-def validator():
-    cls = jsonschema.validators.validator_for(SCHEMA)
-    cls.check_schema(SCHEMA)
-    return cls(SCHEMA)
+@pytest.fixture(scope="module")
+def v():
+    """The validator of the schema's own draft."""
+    return jsonschema.validators.validator_for(SCHEMA)(SCHEMA)
 
 
-def test_the_schema_is_a_valid_schema_of_its_draft():
-    assert validator().META_SCHEMA["$schema"] == SCHEMA["$schema"]
+def test_the_schema_is_a_valid_schema_of_its_draft(v):
+    v.check_schema(SCHEMA)
+    assert v.META_SCHEMA["$schema"] == SCHEMA["$schema"]
 
 
 @pytest.mark.parametrize("folder", SCENE_DIRS)
@@ -93,8 +94,7 @@ def test_each_folder_of_scenes_holds_one(folder: str):
     assert any(path.startswith(folder) for path, _ in SCENES), f"no scene file found under {folder}"
 
 
-def test_every_scene_file_validates_against_the_schema():
-    v = validator()
+def test_every_scene_file_validates_against_the_schema(v):
     invalid = [
         f"{path}: {e.message} at {'/'.join(map(str, e.absolute_path))}"
         for path, doc in SCENES
@@ -104,8 +104,7 @@ def test_every_scene_file_validates_against_the_schema():
     assert len(SCENES) > 60, f"only {len(SCENES)} scene files found"
 
 
-def test_the_schema_refuses_an_unknown_key_and_an_element_not_allowed():
-    v = validator()
+def test_the_schema_refuses_an_unknown_key_and_an_element_not_allowed(v):
     doc = copy.deepcopy(SCENES[0][1])
     assert v.is_valid(doc)
     doc["plate"]["colour"] = "red"
@@ -115,8 +114,7 @@ def test_the_schema_refuses_an_unknown_key_and_an_element_not_allowed():
     assert not v.is_valid(doc), "an unknown element passes"
 
 
-def test_the_resolved_text_of_every_scene_validates():
-    v = validator()
+def test_the_resolved_text_of_every_scene_validates(v):
     resolved, wrong = 0, []
     for path, _ in SCENES:
         try:

@@ -53,10 +53,10 @@ fn document(path: &Path) -> Option<Value> {
     serde_saphyr::from_str::<Value>(&text).ok()
 }
 
-/// The repository's scene files (relative paths) with their documents: the YAML files whose
-/// document is a mapping with `plate`, `material` and `load` (case.yaml files are cases; the
+/// The repository's scene files (relative paths): the YAML files whose document is a mapping
+/// with `plate`, `material` and `load` (case.yaml files are cases; the
 /// uncertainty-quantification declarations and the bad-input list are not scenes).
-fn scene_files() -> Vec<(String, Value)> {
+fn scene_files() -> Vec<String> {
     let root = root();
     let mut files = Vec::new();
     yaml_files(&root, &mut files);
@@ -74,7 +74,7 @@ fn scene_files() -> Vec<(String, Value)> {
                 .ok()?
                 .to_string_lossy()
                 .replace('\\', "/");
-            scene.then_some((rel, doc))
+            scene.then_some(rel)
         })
         .collect()
 }
@@ -184,7 +184,7 @@ fn every_scene_file_starts_with_the_schema_modeline() {
         .canonicalize()
         .expect("the schema file");
     let mut wrong = Vec::new();
-    for (rel, _) in scene_files() {
+    for rel in scene_files() {
         let path = root.join(&rel);
         let text = std::fs::read_to_string(&path).unwrap();
         let first = text.lines().next().unwrap_or_default();
@@ -234,7 +234,7 @@ fn every_scene_reads_back_from_its_resolved_text() {
     let root = root();
     let mut read_back = 0;
     let mut wrong = Vec::new();
-    for (path, _) in scene_files() {
+    for path in scene_files() {
         let Ok(scene) = impact_solver::Scene::from_file(&root.join(&path)) else {
             continue; // the bad-input bases and the refused examples
         };

@@ -45,7 +45,8 @@ impl<F: Formulation, M: ConstitutiveModel> PlateModel<F, M> {
         energy
     }
 
-    /// [`PlateModel::internal_forces`] compiled where it is called (the generic body).
+    /// The generic body of [`PlateModel::internal_forces`]: compiled into each pair's function
+    /// below, and where this crate's unit tests call it.
     #[inline(always)]
     fn forces_here(&mut self, u: &[f64], f: &mut [f64]) -> ElementEnergy {
         let PlateModel {
