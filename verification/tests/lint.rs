@@ -349,3 +349,74 @@ fn lint_names_every_scene_and_wrong_model_the_scene_reader_refuses() {
     let good = with("  a: {file: scene.yaml, set: {mesh.ny: 8}}\n", "");
     assert_eq!(problems(&good), Vec::<String>::new());
 }
+
+/// `not_compared` (issue 40): every row of a measurement table the validation cases read is
+/// compared by a check or declared left out with why, never both; a declared row must exist.
+/// Each rule is shown to fire on the slip it targets, and a whole account is clean.
+#[test]
+fn every_row_of_a_measurement_table_is_compared_or_declared_left_out() {
+    // Rows a (compared by k3), b and c (declared or not).
+    let experiment = r#"  - id: k3
+    title: a measured value
+    measure: {scene: law, metric: round_trip_max_rel}
+    reference: {kind: experiment, table: {file: reference-data/thing/shots.csv, row: {shot: a}, column: value}, source: "a test"}
+    validation:
+      experiment: {relative: 0.01, reason: "repeats"}
+      numerical: {scene: law, reason: "a coarser mesh"}
+"#;
+    let with = |not_compared: &str| {
+        let root = scratch(&format!("{GOOD}{experiment}{not_compared}"), true);
+        std::fs::write(
+            root.join("reference-data/thing/shots.csv"),
+            "shot,value\na,1.0\nb,2.0\nc,3.0\n",
+        )
+        .unwrap();
+        let repo = Repo { root: root.clone() };
+        let (cases, errors) = load_cases(&repo.cases_dir());
+        assert!(errors.is_empty(), "{errors:?}");
+        let f: Vec<String> = lint(&repo, &cases).iter().map(|f| f.to_string()).collect();
+        let _ = std::fs::remove_dir_all(root);
+        f
+    };
+    let entry = |rows: &str| {
+        format!("not_compared:\n  - {{file: reference-data/thing/shots.csv, key: shot, rows: [{rows}], why: \"the mesh inverts\"}}\n")
+    };
+    assert_eq!(with(&entry("b, c")), Vec::<String>::new());
+    // Each slip and the words of its finding.
+    let slips: [(String, [&str; 2]); 6] = [
+        (
+            entry("b"),
+            [
+                "1 row(s) neither compared by a check nor declared",
+                "shot = c",
+            ],
+        ),
+        (String::new(), ["2 row(s) neither", "shot = b, c"]),
+        (
+            entry("a, b, c"),
+            [
+                "not_compared: shot = a is compared by the check at",
+                "case.yaml",
+            ],
+        ),
+        (
+            entry("b, c, d"),
+            ["not_compared:", "no row with shot = \"d\""],
+        ),
+        (
+            entry("b, c, b"),
+            ["shot = b is declared already at", "case.yaml"],
+        ),
+        (
+            entry("b, c").replace("the mesh inverts", " "),
+            ["says why it is left out", "not_compared:"],
+        ),
+    ];
+    for (declaration, words) in slips {
+        let f = with(&declaration);
+        assert!(
+            f.iter().any(|m| words.iter().all(|w| m.contains(w))),
+            "{declaration}: {f:?}"
+        );
+    }
+}

@@ -148,6 +148,10 @@ pub struct CaseFile {
     /// Trivial or wrong models the evidence checks are re-evaluated on (issue 10).
     #[serde(default)]
     pub wrong_models: BTreeMap<String, Spanned<WrongModelSpec>>,
+    /// Rows of a measurement table the case does not compare, with why
+    /// (`crate::definition::not_compared`).
+    #[serde(default)]
+    pub not_compared: Vec<Spanned<crate::definition::not_compared::NotComparedFile>>,
 }
 
 /// A trivial or wrong model: what the case's checks would say about it (the

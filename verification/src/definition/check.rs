@@ -189,8 +189,13 @@ pub fn evaluate(check: &CheckFile, ctx: &Context) -> CheckResult {
     };
     result.reference = Some(r);
     if let Some(v) = &check.validation {
-        let file = reference.table.as_ref().map(|t| t.file.clone());
-        return validated(result, &v.value, (computed, r), (measure, file), ctx);
+        return validated(
+            result,
+            &v.value,
+            (computed, r),
+            (measure, reference.table.as_ref()),
+            ctx,
+        );
     }
     judged(result, &tol, (computed, r), check.compare)
 }
@@ -253,7 +258,7 @@ fn validated(
     mut result: CheckResult,
     spec: &ValidationFile,
     (simulation, measurement): (f64, f64),
-    (measure, measurement_file): (&MeasureFile, Option<String>),
+    (measure, table): (&MeasureFile, Option<&crate::definition::case::TableRef>),
     ctx: &Context,
 ) -> CheckResult {
     let on = |scene: &str| {
@@ -275,7 +280,11 @@ fn validated(
         )?)
     });
     let parts = parts.map(|row| ValidationRow {
-        measurement_file,
+        measurement_file: table.map(|t| t.file.clone()),
+        measurement_row: table.and_then(|t| match t.row.values().collect::<Vec<_>>()[..] {
+            [one] => Some(one.clone()),
+            _ => None,
+        }),
         ..row
     });
     let row = match parts {

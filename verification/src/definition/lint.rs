@@ -9,7 +9,9 @@
 //! - every reference file sits under reference-data/ and has a provenance note
 //!   (`PROVENANCE.md` in its folder or a parent folder inside reference-data/), and so does
 //!   every data file found in reference-data/;
-//! - measures name scenes and series the case defines.
+//! - measures name scenes and series the case defines;
+//! - every row of a measurement table the validation cases read is compared by a check or
+//!   declared not compared, with why (`crate::definition::not_compared`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
@@ -78,6 +80,7 @@ pub fn lint(repo: &Repo, cases: &[Case]) -> Vec<Finding> {
             &mut case_ids,
         );
     }
+    findings.extend(crate::definition::not_compared::findings(&repo.root, cases));
     // Every data file in reference-data/ has provenance.
     let mut files = Vec::new();
     walk(&repo.root.join("reference-data"), &mut files);

@@ -104,6 +104,9 @@ pub struct ValidationRow {
     /// measurement is a value written in the case.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub measurement_file: Option<String>,
+    /// The row of that table (its one selecting value, a shot's id), when one column selects it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measurement_row: Option<String>,
 }
 
 impl ValidationRow {
@@ -151,6 +154,7 @@ impl ValidationRow {
             input_deltas,
             area: area_metric((simulation, spread), (measurement, u_d)),
             measurement_file: None,
+            measurement_row: None,
         })
     }
 

@@ -141,27 +141,110 @@ fn summary(rows: &[&Comparison]) -> String {
 }
 
 /// Every case's comparisons pooled per measurement table (`measurement_file`: one table per
-/// material), each with the quantity table of [`summary`]: a material's shots over its cases
-/// read as one set. Empty when no row names its table.
-fn by_material(all: &[Comparison]) -> String {
-    let mut per: BTreeMap<&str, Vec<&Comparison>> = BTreeMap::new();
+/// material), each with the count of its rows compared and left out and the quantity table of
+/// [`summary`]: a material's shots over its cases read as one set. Empty when no row names its
+/// table.
+fn by_material(all: &[Comparison], left: &[&Value]) -> String {
+    let mut per: BTreeMap<&str, (Vec<&Comparison>, usize)> = BTreeMap::new();
     for r in all {
         if let Some(file) = r.v["measurement_file"].as_str() {
-            per.entry(file).or_default().push(r);
+            per.entry(file).or_default().0.push(r);
+        }
+    }
+    for r in left {
+        if let Some(file) = r["file"].as_str() {
+            per.entry(file).or_default().1 += 1;
         }
     }
     let mut s = String::new();
-    for (file, rows) in &per {
-        let _ = write!(
+    for (file, (rows, left_out)) in &per {
+        let shots: std::collections::BTreeSet<&str> = rows
+            .iter()
+            .filter_map(|r| r.v["measurement_row"].as_str())
+            .collect();
+        let _ =
+            write!(
             s,
-            "\n**`{file}`**, every case that reads it:\n{}",
-            summary(rows)
+            "\n**`{file}`**, every case that reads it: rows compared {}, not compared {left_out} \
+             (each case lists its own with why).\n{}",
+            shots.len(),
+            if rows.is_empty() { String::new() } else { summary(rows) }
         );
     }
     if s.is_empty() {
         return s;
     }
     format!("## Pooled per material\n{s}\n")
+}
+
+/// The columns of a row left out that the report shows (header, label), where its table has them.
+const SHOWN: [(&str, &str); 6] = [
+    ("source", "source"),
+    ("initial_temperature_K", "T0 (K)"),
+    ("impact_speed_m_s", "speed (m/s)"),
+    ("initial_length_m", "L0 (m)"),
+    ("final_length_m", "measured Lf (m)"),
+    ("foot_diameter_m", "measured Dm (m)"),
+];
+
+/// The case's rows of measurement tables it does not compare.
+fn left_out_of(case: &Value) -> Vec<&Value> {
+    case["not_compared"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// The rows left out, a table per reason (in the order the case declares them).
+fn left_out(rows: &[&Value]) -> String {
+    let mut groups: Vec<(&str, Vec<&Value>)> = Vec::new();
+    for r in rows {
+        let why = r["why"].as_str().unwrap_or("");
+        match groups.iter_mut().find(|(w, _)| *w == why) {
+            Some((_, g)) => g.push(r),
+            None => groups.push((why, vec![r])),
+        }
+    }
+    let mut s = String::new();
+    for (why, group) in groups {
+        let shown: Vec<(&str, &str)> = SHOWN
+            .into_iter()
+            .filter(|(h, _)| {
+                group
+                    .iter()
+                    .any(|r| r["cells"][h].as_str().is_some_and(|c| !c.is_empty()))
+            })
+            .collect();
+        let key = group[0]["key"].as_str().unwrap_or("row");
+        let _ = writeln!(
+            s,
+            "\n**Not compared** ({} rows of `{}`): {why}\n",
+            group.len(),
+            group[0]["file"].as_str().unwrap_or("")
+        );
+        let labels: Vec<&str> = shown.iter().map(|(_, l)| *l).collect();
+        let _ = writeln!(s, "| {key} | {} |", labels.join(" | "));
+        let _ = writeln!(s, "|---|{}", "---|".repeat(shown.len()));
+        for r in group {
+            let cells: Vec<&str> = shown
+                .iter()
+                .map(|(h, _)| {
+                    r["cells"][h]
+                        .as_str()
+                        .filter(|c| !c.is_empty())
+                        .unwrap_or("-")
+                })
+                .collect();
+            let _ = writeln!(
+                s,
+                "| {} | {} |",
+                r["row"].as_str().unwrap_or(""),
+                cells.join(" | ")
+            );
+        }
+    }
+    s
 }
 
 /// What the model predicts within its uncertainty and what it misses, with the cases' reasons.
@@ -213,10 +296,13 @@ fn every_comparison(results: &Value) -> Vec<Comparison> {
 /// measurement.
 pub fn markdown(results: &Value) -> Option<String> {
     let all = every_comparison(results);
-    let mut s = by_material(&all);
-    for c in results["cases"].as_array().into_iter().flatten() {
+    let cases = results["cases"].as_array().into_iter().flatten();
+    let left: Vec<&Value> = cases.clone().flat_map(left_out_of).collect();
+    let mut s = by_material(&all, &left);
+    for c in cases {
         let rows = comparisons(c);
-        if rows.is_empty() {
+        let left = left_out_of(c);
+        if rows.is_empty() && left.is_empty() {
             continue;
         }
         let _ = writeln!(
@@ -227,9 +313,12 @@ pub fn markdown(results: &Value) -> Option<String> {
             c["title"].as_str().unwrap_or(""),
             c["problem"].as_str().unwrap_or("").trim()
         );
-        s.push_str(&table(&rows));
-        s.push_str(&summary(&rows.iter().collect::<Vec<_>>()));
-        s.push_str(&statement(&rows));
+        if !rows.is_empty() {
+            s.push_str(&table(&rows));
+            s.push_str(&summary(&rows.iter().collect::<Vec<_>>()));
+            s.push_str(&statement(&rows));
+        }
+        s.push_str(&left_out(&left));
     }
     (!s.is_empty()).then(|| {
         format!(
@@ -242,7 +331,10 @@ pub fn markdown(results: &Value) -> Option<String> {
              (Ferson, Oberkampf and Ginzburg 2008) is the area between the cumulative \
              distributions of the prediction `N(S, u_num^2 + u_input^2)` and the measurement \
              `N(D, u_D^2)`, in the quantity's unit. The models' constants were fitted to other \
-             tests, never to these: this is validation, not calibration.\n\n{s}"
+             tests, never to these: this is validation, not calibration. The rows of a measurement \
+             table that a case does not compare are listed under it with why (a run the \
+             solver cannot finish, no constants fitted to other tests, a comparison that \
+             could not fail).\n\n{s}"
         )
     })
 }
@@ -347,6 +439,54 @@ mod tests {
         );
         assert!(md.contains("| profile | 1 | 1 | - | - |"), "{md}");
         assert!(!md.contains("inf"), "{md}");
+    }
+
+    #[test]
+    fn rows_left_out_are_counted_per_table_and_listed_with_why() {
+        let left = |row: &str, file: &str, why: &str| {
+            serde_json::json!({"file": file, "key": "shot_id", "row": row, "why": why,
+                "cells": {"shot_id": row, "impact_speed_m_s": "478", "final_length_m": "0.01",
+                    "foot_diameter_m": "", "unshown": "x"}})
+        };
+        let mut r = case(&[("final-length-a", 10.1, 10.0, 0.1, None)]);
+        r["cases"][0]["checks"][0]["vv20_budget"]["measurement_file"] = "al.csv".into();
+        r["cases"][0]["checks"][0]["vv20_budget"]["measurement_row"] = "a".into();
+        r["cases"][0]["not_compared"] = serde_json::json!([
+            left("b", "al.csv", "inverts"),
+            left("c", "al.csv", "inverts"),
+            left("d", "etp.csv", "no constants"),
+        ]);
+        let md = markdown(&r).unwrap();
+        assert!(
+            md.contains("**`al.csv`**, every case that reads it: rows compared 1, not compared 2"),
+            "{md}"
+        );
+        assert!(
+            md.contains("**`etp.csv`**, every case that reads it: rows compared 0, not compared 1"),
+            "{md}"
+        );
+        assert!(
+            md.contains("**Not compared** (2 rows of `al.csv`): inverts"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| shot_id | speed (m/s) | measured Lf (m) |"),
+            "{md}"
+        );
+        assert!(md.contains("| b | 478 | 0.01 |"), "{md}");
+        assert!(
+            md.contains("**Not compared** (1 rows of `etp.csv`): no constants"),
+            "{md}"
+        );
+        assert!(!md.contains("unshown"), "{md}");
+        // A case with rows left out and no comparison still has its section.
+        let only = serde_json::json!({"cases": [{"suite": "s", "case": "e", "title": "t",
+            "problem": "p", "checks": [], "not_compared": [left("d", "etp.csv", "no constants")]}]});
+        let md = markdown(&only).unwrap();
+        assert!(
+            md.contains("## s/e") && md.contains("| d | 478 | 0.01 |"),
+            "{md}"
+        );
     }
 
     #[test]

@@ -9,6 +9,7 @@ use crate::codes::Code;
 use crate::definition::broken::Broken;
 use crate::definition::case::{Case, Category};
 use crate::definition::check::{self, CheckResult, Context, Status};
+use crate::definition::not_compared::NotComparedRow;
 use crate::definition::repo::Repo;
 use crate::definition::run_data::JobResult;
 use crate::run::history_invariants;
@@ -112,6 +113,7 @@ fn invariant_row(
         checks,
         wrong_models: BTreeMap::new(),
         discrimination: Vec::new(),
+        not_compared: Vec::new(),
     })
 }
 
@@ -196,6 +198,7 @@ fn broken_row(b: &Broken) -> CaseResult {
         checks: vec![check],
         wrong_models: BTreeMap::new(),
         discrimination: Vec::new(),
+        not_compared: Vec::new(),
     }
 }
 
@@ -294,7 +297,20 @@ pub(super) fn case_result(
         checks,
         wrong_models: crate::run::discriminate::titles(case),
         discrimination,
+        not_compared: not_compared(repo, case),
     }
+}
+
+/// The measurements the case declares it does not compare (the lint has checked that each
+/// entry's rows exist: a broken case never gets here).
+fn not_compared(repo: &Repo, case: &Case) -> Vec<NotComparedRow> {
+    case.file
+        .not_compared
+        .iter()
+        .flat_map(|e| {
+            crate::definition::not_compared::rows(&repo.root, &e.value).unwrap_or_default()
+        })
+        .collect()
 }
 
 /// The values of each series' metrics that the checks use, with the series' levels.

@@ -44,6 +44,9 @@ pub struct CaseResult {
     pub wrong_models: BTreeMap<String, String>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub discrimination: Vec<crate::run::discriminate::Row>,
+    /// The rows of measurement tables the case does not compare, with why (validation cases).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub not_compared: Vec<crate::definition::not_compared::NotComparedRow>,
 }
 
 #[derive(Debug, Clone, Serialize)]
