@@ -5,6 +5,8 @@ import json
 import os
 
 OUTPUTS = ("history.csv", "summary.json", "adapter.json")
+# A problem's outputs (problem.py): the fields in place of the history and summary.
+PROBLEM_OUTPUTS = ("fields.json", "adapter.json")
 
 
 def summary(s, cols, rows, n_elements, dt):
@@ -74,20 +76,24 @@ def history_text(cols, rows):
 
 def write(out_dir, cols, rows, summary_dict, adapter_dict):
     """Write the three files into out_dir (none of them on an exception)."""
-    texts = {"history.csv": history_text(cols, rows),
-             "summary.json": json.dumps(summary_dict, indent=2) + "\n",
-             "adapter.json": json.dumps(adapter_dict, indent=2) + "\n"}
+    write_all(out_dir, {"history.csv": history_text(cols, rows),
+                        "summary.json": json.dumps(summary_dict, indent=2) + "\n",
+                        "adapter.json": json.dumps(adapter_dict, indent=2) + "\n"})
+
+
+def write_all(out_dir, texts):
+    """Write each {name: text} into out_dir (none of them on an exception)."""
     try:
-        for name in OUTPUTS:
-            write_atomic(os.path.join(out_dir, name), texts[name])
+        for name, text in texts.items():
+            write_atomic(os.path.join(out_dir, name), text)
     except BaseException:
         remove(out_dir)
         raise
 
 
 def remove(out_dir):
-    """Remove any of the three files (and their .part) from out_dir."""
-    for name in OUTPUTS:
+    """Remove any output file (and its .part) from out_dir."""
+    for name in OUTPUTS + PROBLEM_OUTPUTS:
         for p in (name, name + ".part"):
             try:
                 os.remove(os.path.join(out_dir, p))

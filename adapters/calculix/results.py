@@ -19,6 +19,7 @@ KINDS = {  # header text -> short name
     "total internal energy": "ELSE",
     "total kinetic energy": "ELKE",
     "total force (fx,fy,fz)": "RF",
+    "forces (fx,fy,fz)": "F",  # *NODE PRINT RF without TOTALS: each node's
     "velocities (vx,vy,vz)": "V",
 }
 

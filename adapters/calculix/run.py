@@ -2,9 +2,11 @@
 """CalculiX (ccx 2.20) adapter of the verification matrix (adapters/README.md).
 
 Usage: python3 run.py OUT_DIR/scene.yaml OUT_DIR
+       python3 run.py OUT_DIR/problem.json OUT_DIR
 Reads OUT_DIR/scene.json, writes OUT_DIR/job.inp, runs `ccx -i job` there, and writes
-history.csv, summary.json and adapter.json. Exit 0 done, 3 not expressible, 1 failed (one
-line on stderr naming the scene and ccx's last lines).
+history.csv, summary.json and adapter.json; for a builtin's problem (problem.py), fields.json
+and adapter.json. Exit 0 done, 3 not expressible, 1 failed (one line on stderr naming the
+scene and ccx's last lines).
 """
 
 import math
@@ -20,6 +22,7 @@ import deck  # noqa: E402
 import history  # noqa: E402
 import nose as nose_mod  # noqa: E402
 import probes as probe_lookup  # noqa: E402
+import problem as problem_mod  # noqa: E402
 import results  # noqa: E402
 import runner  # noqa: E402
 import scene as scene_io  # noqa: E402
@@ -113,11 +116,14 @@ def simulate_contact(s, mesh, located, out_dir):
 def main(argv):
     """Entry point: returns the exit status."""
     if len(argv) != 3:
-        print("usage: run.py SCENE_YAML OUT_DIR", file=sys.stderr)
+        print("usage: run.py SCENE_YAML|PROBLEM_JSON OUT_DIR", file=sys.stderr)
         return 2
     scene_yaml, out_dir = argv[1], argv[2]
     try:
-        simulate(scene_yaml, out_dir)
+        if os.path.basename(scene_yaml) == "problem.json":
+            problem_mod.solve(scene_yaml, out_dir, ccx_version())
+        else:
+            simulate(scene_yaml, out_dir)
     except scene_io.NotExpressible as e:
         print(f"not expressible: {e.feature}: {e.reason}", file=sys.stderr)
         return EXIT_NOT_EXPRESSIBLE

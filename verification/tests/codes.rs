@@ -86,10 +86,22 @@ checks:
 ";
 
 /// The fake code: `FAKE_MODE` = ok (the contract's three files), refuse (exit 3), crash,
-/// hang, garbage (a history with a word in it). It refuses to write when it was not given a
+/// hang, garbage (a history with a word in it); given a builtin's problem.json, the patch
+/// test's exact fields (`FAKE_MODE` = patch-fails: 1 N on its free node). It refuses to write when it was not given a
 /// readable scene.yaml and scene.json.
 const ADAPTER: &str = r#"#!/bin/sh
 scene="$1"; out="$2"
+case "$scene" in
+  */problem.json)
+    grep -q '"problem": "static"' "$scene" || { echo "no problem.json" >&2; exit 9; }
+    force=0.0; [ "$FAKE_MODE" = patch-fails ] && force=1.0
+    s='[207000000.0, -47769230.76923077, 47769230.76923077, 15923076.923076924]'
+    { printf '{"displacements_m": [[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0],[0,0]],\n'
+      printf ' "nodal_forces_N": [[1000,0],[-1000,0],[1000,0],[-1000,0],[%s,0],[1000,0],[-1000,0],[1000,0],[-1000,0]],\n' "$force"
+      printf ' "point_stresses_Pa": [[%s],[%s],[%s],[%s]]}\n' "$s" "$s" "$s" "$s"; } > "$out/fields.json"
+    printf '{"code": "fake", "version": "0.1", "input": [], "wall_time_s": 0.01, "n_elements": 4, "n_steps": 1}\n' > "$out/adapter.json"
+    exit 0 ;;
+esac
 grep -q '^plate:' "$scene" || { echo "no scene.yaml" >&2; exit 9; }
 [ -n "$FAKE_LOG" ] && echo "$out" >> "$FAKE_LOG"
 grep -q '"cfl": 0.25' "$out/scene.json" && { echo "not expressible: time.dt.cfl: 0.25 is too small for fake" >&2; exit 3; }
@@ -235,6 +247,81 @@ fn the_same_checks_are_evaluated_on_the_other_code() {
     let (code, stdout, _) = verify(&root, "ok", &["--code", "fake"]);
     assert_eq!(code, 0, "{stdout}");
     let _ = std::fs::remove_dir_all(&root);
+}
+
+/// A case of the patch builtin, whose problem another code can solve.
+const PATCH_CASE: &str = "id: c1
+title: t
+requirement: {id: REQ-1, text: The solver shall do a thing.}
+category: code verification
+scenes:
+  patch: {builtin: patch, params: {element: q4-full}}
+checks:
+  - id: free-node
+    title: the free node's force
+    measure: {scene: patch, metric: free_node_force_rel}
+    reference: {kind: analytical, value: 0.0, source: \"patch test\"}
+    tolerance: {absolute: 1.0e-12, reason: \"test\"}
+  - id: stress
+    title: the stress at every point
+    measure: {scene: patch, metric: stress_max_rel_error}
+    reference: {kind: analytical, value: 0.0, source: \"patch test\"}
+    tolerance: {absolute: 1.0e-12, reason: \"test\"}
+  - id: rate
+    title: impact's own central differences
+    measure: {scene: patch, metric: rate_free_node_deviation_rel}
+    reference: {kind: analytical, value: 0.0, source: \"patch test\"}
+    tolerance: {absolute: 1.0e-10, reason: \"test\"}
+";
+
+/// A builtin with a problem form (the patch test) is the other code's to solve: the fake
+/// code's fields are judged by the builtin's own rules (OK when exact; FAIL when its free
+/// node carries 1 N, which a harness that judged impact's computation under the fake's name
+/// would pass), the part it cannot give (impact's central differences) is N/E, and the problem
+/// it was given is kept with its run.
+#[test]
+fn a_builtin_s_problem_is_solved_by_the_other_code() {
+    let root = scratch("", 60.0);
+    std::fs::write(
+        root.join("verification/cases/suite/case/case.yaml"),
+        PATCH_CASE,
+    )
+    .unwrap();
+    let (code, stdout, stderr) = verify(&root, "ok", &["--code", "fake"]);
+    assert_eq!(code, 0, "{stdout}\n{stderr}");
+    assert_eq!(status(&stdout, "fake", "free-node"), "OK");
+    assert_eq!(status(&stdout, "fake", "stress"), "OK");
+    assert_eq!(status(&stdout, "fake", "rate"), "N/E");
+    let kept = walk(&root.join("out/codes/fake"));
+    let problem = kept
+        .iter()
+        .find(|p| p.ends_with("problem.json"))
+        .unwrap_or_else(|| panic!("no problem.json kept: {kept:?}"));
+    let text = std::fs::read_to_string(problem).unwrap();
+    assert!(
+        text.contains("\"element\": \"q4-full\"") && text.contains("\"prescribed_m\""),
+        "{text}"
+    );
+    let (code, stdout, stderr) = verify(&root, "patch-fails", &["--code", "fake"]);
+    assert_eq!(code, 1, "{stdout}\n{stderr}");
+    assert_eq!(status(&stdout, "fake", "free-node"), "FAIL");
+    assert_eq!(status(&stdout, "fake", "stress"), "OK");
+    assert!(scratch_left(&root).is_empty(), "{:?}", scratch_left(&root));
+    let _ = std::fs::remove_dir_all(root);
+}
+
+/// Every file under `dir`.
+fn walk(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            out.extend(walk(&p));
+        } else {
+            out.push(p);
+        }
+    }
+    out
 }
 
 #[test]

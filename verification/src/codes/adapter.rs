@@ -1,7 +1,8 @@
 //! Another code through its adapter (`adapters/<name>/adapter.yaml`, the contract in
 //! `adapters/README.md`): the scene written out as `scene.yaml` and `scene.json` into a
 //! scratch folder, the adapter run there with a time limit, and its `history.csv`,
-//! `summary.json` and `adapter.json` read back. Exit status 3 is *not expressible* (its last
+//! `summary.json` and `adapter.json` read back; a builtin's problem likewise, as `problem.json`
+//! in and `fields.json` out (`super::problem`). Exit status 3 is *not expressible* (its last
 //! line of output names the feature); any other failure is one message naming the code, the
 //! scene, the status and the code's last lines. The scratch folder is removed whatever
 //! happens; the files worth keeping (the scene, the code's input, `adapter.json`) travel with
@@ -13,6 +14,7 @@ use std::path::{Path, PathBuf};
 use impact_solver::Scene;
 use serde::Deserialize;
 
+use super::problem::{Fields, Problem};
 use super::process::{self, Ended};
 use super::NOT_EXPRESSIBLE;
 use crate::definition::run_data::RunData;
@@ -121,51 +123,92 @@ impl Adapter {
         )
         .map_err(|e| format!("{}: {e}", yaml.display()))?;
         std::fs::write(dir.join("scene.json"), json + "\n").map_err(|e| e.to_string())?;
+        let source = scene.source.display().to_string();
+        let wall_time_s = self.execute(&yaml, dir, &source)?;
+        let mut run = super::contract::read_run(dir, Some(scene))
+            .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
+        Self::whole_time(&mut run, wall_time_s);
+        run.files = kept_files(dir, &run, "scene.yaml");
+        Ok(run)
+    }
+
+    /// Runs builtin `builtin`'s `problem` through the adapter (`problem.json` in, `fields.json`
+    /// out: `super::problem`): the fields, and a run that records the adapter's input,
+    /// substitutions and cost, marked as solved by this code ([`PROBLEM_SOLVED_BY`]).
+    pub fn run_problem(
+        &self,
+        builtin: &str,
+        problem: &Problem,
+    ) -> Result<(Fields, RunData), String> {
+        let scratch = super::process::Scratch::new(&self.name)?;
+        let dir = &scratch.0;
+        let input = dir.join("problem.json");
+        let json = serde_json::to_string_pretty(problem).map_err(|e| e.to_string())?;
+        std::fs::write(&input, json + "\n").map_err(|e| format!("{}: {e}", input.display()))?;
+        let source = format!("the problem of builtin {builtin}");
+        let wall_time_s = self.execute(&input, dir, &source)?;
+        let unreadable = |e: String| format!("{} on {source}: unreadable output: {e}", self.name);
+        let fields = Fields::read(&dir.join("fields.json"), problem).map_err(unreadable)?;
+        let (mut info, cost) = super::contract::read_adapter_record(dir, &serde_json::Value::Null)
+            .map_err(unreadable)?;
+        info.insert(PROBLEM_SOLVED_BY.into(), self.name.clone());
+        let mut run = RunData {
+            info,
+            cost,
+            ..Default::default()
+        };
+        Self::whole_time(&mut run, wall_time_s);
+        run.files = kept_files(dir, &run, "problem.json");
+        Ok((fields, run))
+    }
+
+    /// The whole adapter's time (input, code, output) is the code's cost on this run; the
+    /// code's own, from `adapter.json`, is kept apart.
+    fn whole_time(run: &mut RunData, wall_time_s: f64) {
+        if let Some(c) = &mut run.cost {
+            c.code_time_s = Some(c.wall_time_s);
+            c.wall_time_s = wall_time_s;
+        }
+    }
+
+    /// Runs the adapter on `input` in `dir` (`source` names the input in messages): the wall
+    /// time, s, or the one message of a refusal (*not expressible*), a failure, a timeout or an
+    /// interrupt.
+    fn execute(&self, input: &Path, dir: &Path, source: &str) -> Result<f64, String> {
         let log = dir.join("adapter.log");
         let done = process::run(
             &self.command,
-            &[&yaml, dir],
+            &[input, dir],
             &self.dir,
             &log,
             self.timeout_s,
         )?;
-        let source = scene.source.display();
         let tail = done.tail.join(" | ");
         match done.ended {
-            Ended::Exited(Some(0)) => {}
+            Ended::Exited(Some(0)) => Ok(done.wall_time_s),
             Ended::Exited(Some(EXIT_NOT_EXPRESSIBLE)) => {
                 let line = done.tail.last().cloned().unwrap_or_default();
                 let line = line.trim_start_matches("not expressible:").trim();
-                return Err(format!("{NOT_EXPRESSIBLE}{line}"));
+                Err(format!("{NOT_EXPRESSIBLE}{line}"))
             }
             Ended::Exited(status) => {
                 let status = status.map_or("killed by a signal".into(), |s| format!("exit {s}"));
-                return Err(format!(
-                    "{} failed on {source} ({status}): {tail}",
-                    self.name
-                ));
+                Err(format!("{} failed on {source} ({status}): {tail}", self.name))
             }
-            Ended::TimedOut(limit) => {
-                return Err(format!("{} on {source}: killed after its time limit of {limit} s (adapter.yaml timeout_s): {tail}", self.name));
-            }
-            Ended::Interrupted => return Err(format!("{} on {source}: interrupted", self.name)),
+            Ended::TimedOut(limit) => Err(format!("{} on {source}: killed after its time limit of {limit} s (adapter.yaml timeout_s): {tail}", self.name)),
+            Ended::Interrupted => Err(format!("{} on {source}: interrupted", self.name)),
         }
-        let mut run = super::contract::read_run(dir, Some(scene))
-            .map_err(|e| format!("{} on {source}: unreadable output: {e}", self.name))?;
-        // The whole adapter's time (input, code, output) is the code's cost on this scene.
-        if let Some(c) = &mut run.cost {
-            c.code_time_s = Some(c.wall_time_s);
-            c.wall_time_s = done.wall_time_s;
-        }
-        run.files = kept_files(dir, &run);
-        Ok(run)
     }
 }
 
-/// The files kept with the run: the scene, `adapter.json`, and the inputs it names.
-fn kept_files(dir: &Path, run: &RunData) -> BTreeMap<String, Vec<u8>> {
+/// The info key of a builtin's run whose problem another code solved: that code's name.
+pub const PROBLEM_SOLVED_BY: &str = "problem solved by";
+
+/// The files kept with the run: the harness's input (`scene.yaml`, `problem.json`),
+/// `adapter.json`, and the inputs it names.
+fn kept_files(dir: &Path, run: &RunData, input: &str) -> BTreeMap<String, Vec<u8>> {
     let mut names = vec![
-        "scene.yaml".to_string(),
+        input.to_string(),
         "adapter.json".into(),
         "adapter.log".into(),
     ];

@@ -31,6 +31,31 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
     if let Some(scene) = scene {
         derived_metrics(scene, &mut metrics);
     }
+    let (info, cost) = read_adapter_record(dir, &summary)?;
+    Ok(RunData {
+        metrics,
+        histories: BTreeMap::from([(String::new(), history)]),
+        info,
+        summary: Some(summary),
+        files: BTreeMap::new(),
+        cost,
+        scene_values: BTreeMap::new(),
+    })
+}
+
+/// What `dir/adapter.json` records, when present: the code, its version, its substitutions and
+/// the input it ran (`info`), and the run's cost (its counts from the file, else from
+/// `summary`, where impact writes them).
+pub fn read_adapter_record(
+    dir: &Path,
+    summary: &Value,
+) -> Result<
+    (
+        BTreeMap<String, String>,
+        Option<crate::definition::run_data::Cost>,
+    ),
+    String,
+> {
     let mut info = BTreeMap::new();
     let mut cost = None;
     let adapter = dir.join("adapter.json");
@@ -60,15 +85,7 @@ pub fn read_run(dir: &Path, scene: Option<&Scene>) -> Result<RunData, String> {
             }
         }
     }
-    Ok(RunData {
-        metrics,
-        histories: BTreeMap::from([(String::new(), history)]),
-        info,
-        summary: Some(summary),
-        files: BTreeMap::new(),
-        cost,
-        scene_values: BTreeMap::new(),
-    })
+    Ok((info, cost))
 }
 
 /// A JSON value as one line: strings bare, lists joined by "; ".

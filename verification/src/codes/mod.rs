@@ -6,6 +6,7 @@
 
 pub mod adapter;
 pub mod contract;
+pub mod problem;
 pub mod process;
 pub mod results_from;
 

@@ -1,6 +1,7 @@
 //! A check's row on another code (issue 38): the same check, reference and tolerance, and
 //! rules of its own. A check that measures `impact`'s own computation (a builtin: a
-//! kernel, a manufactured solution) is *not expressible* (N/E) on another code; so is one
+//! kernel, a manufactured solution) is *not expressible* (N/E) on another code, unless the
+//! builtin's problem was the code's to solve (`crate::codes::problem`); so is one
 //! that reads a scene the code refused (its adapter's exit status 3, or no folder under
 //! `--results-from`), and one that reads a column or key the code did not write (*not
 //! produced*), and one whose reference is the same code's own stored run (kind `other
@@ -38,7 +39,7 @@ pub fn judge(
     scenes_read(&k.measure.value, case.default_scene(), results, &mut read);
     let builtin = read.iter().find_map(|name| {
         let s = case.file.scenes.get(name)?;
-        s.value.builtin.is_some().then(|| {
+        (s.value.builtin.is_some() && !solved_by(results.get(name), code)).then(|| {
             format!("not expressible: measures impact's own computation (builtin {name}), not a run of {code}")
         })
     });
@@ -57,6 +58,21 @@ pub fn judge(
     } else if r.not_produced {
         let why = format!("not produced by {code}: {}", r.message);
         not_expressible(r, why);
+    }
+}
+
+/// Whether `result` is a builtin's problem that `code` solved (`crate::codes::problem`), or a
+/// refusal of it: either is the code's own answer, not impact's computation.
+fn solved_by(result: Option<&JobResult>, code: &str) -> bool {
+    match result {
+        Some(Ok(d)) => {
+            d.info
+                .get(crate::codes::adapter::PROBLEM_SOLVED_BY)
+                .map(String::as_str)
+                == Some(code)
+        }
+        Some(Err(e)) => is_not_expressible(e) || e.starts_with(code),
+        None => false,
     }
 }
 

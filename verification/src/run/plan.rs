@@ -107,7 +107,8 @@ pub struct Plan<'a> {
 impl Plan<'_> {
     /// Runs job `i` on the plan's code: `impact` runs every job in-process; another code
     /// runs the scenes (through its adapter, or read from its folder), not the scenes whose
-    /// point is `impact`'s input validation (`expect_error`), and builtins in-process.
+    /// point is `impact`'s input validation (`expect_error`), a builtin's problem through its
+    /// adapter when the builtin has one, and the other builtins in-process.
     pub fn run_job(&self, i: usize) -> crate::definition::run_data::JobResult {
         use std::sync::Arc;
         let job = &self.jobs[i];
@@ -117,6 +118,11 @@ impl Plan<'_> {
             ..
         } = job
         else {
+            if let (Code::Adapter(a), Job::Builtin { name, params }) = (&self.code, job) {
+                if let Some(run) = crate::run::builtins::run_on(a, name, params) {
+                    return run.map(Arc::new);
+                }
+            }
             return job.run();
         };
         match &self.code {
@@ -206,10 +212,16 @@ pub fn plan_for<'a>(
                         opts.include_heavy,
                     )?);
                 } else {
-                    // Another code runs the scenes, and the builtins its references need.
+                    // Another code runs the scenes and, through its adapter, the builtins
+                    // with a problem form; the harness the builtins its references need.
                     let needed = crate::run::other_code::referenced_builtins(case);
-                    js.retain(|name, job| {
-                        matches!(job, Job::Scene { .. }) || needed.contains(name)
+                    let adapter = matches!(code, Code::Adapter(_));
+                    js.retain(|name, job| match job {
+                        Job::Scene { .. } => true,
+                        Job::Builtin { name: b, .. } => {
+                            needed.contains(name)
+                                || (adapter && crate::run::builtins::problem_form(b).is_some())
+                        }
                     });
                 }
                 Ok(js)

@@ -2,8 +2,12 @@
 //! impactor and element API, and the solver against closed-form reference solutions (beam
 //! theory, modal superposition, plane waves: `impact_analytical`). Each returns named metrics
 //! (and histories) for the checks to read. The code-verification builtins
-//! (`crate::run::code_verification`) are found through the same names.
+//! (`crate::run::code_verification`) are found through the same names. A builtin with a
+//! problem form ([`ProblemForm`]) runs on another code too: its problem solved by the code's
+//! adapter, its metrics from the code's fields.
 
+use crate::codes::problem::{Fields, Problem};
+use crate::codes::Adapter;
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::Params;
 
@@ -26,6 +30,50 @@ const REGISTRY: [(&str, Builtin); 6] = [
     ("plane-wave", plane_wave::plane_wave),
 ];
 
+/// A builtin another code can compute (`crate::codes::problem`): its problem, and its
+/// metrics from the fields the code solved.
+pub struct ProblemForm {
+    pub problem: fn(&Params) -> Result<Problem, String>,
+    pub evaluate: fn(&Params, &Fields) -> Result<RunData, String>,
+}
+
+/// The builtins with a problem form, by name.
+const PROBLEMS: [(&str, ProblemForm); 1] = [(
+    "patch",
+    ProblemForm {
+        problem: patch::patch_problem,
+        evaluate: patch::patch_from_fields,
+    },
+)];
+
+/// The problem form of builtin `name`, if it has one.
+pub fn problem_form(name: &str) -> Option<&'static ProblemForm> {
+    PROBLEMS.iter().find(|(n, _)| *n == name).map(|(_, f)| f)
+}
+
+/// Builtin `name`'s problem solved by another code's `adapter`, evaluated as the builtin
+/// evaluates its own (`None` when it has no problem form: it runs in-process).
+pub fn run_on(adapter: &Adapter, name: &str, p: &Params) -> Option<Result<RunData, String>> {
+    let form = problem_form(name)?;
+    Some((|| {
+        let problem = (form.problem)(p)?;
+        let (fields, mut run) = adapter.run_problem(name, &problem)?;
+        let evaluated = (form.evaluate)(p, &fields)?;
+        run.metrics = evaluated.metrics;
+        run.histories = evaluated.histories;
+        labelled(&mut run, name, p);
+        Ok(run)
+    })())
+}
+
+/// Names the builtin and its parameters in the run's info.
+fn labelled(d: &mut RunData, name: &str, p: &Params) {
+    d.info.insert("builtin".into(), name.to_string());
+    for (k, v) in p {
+        d.info.insert(format!("param {k}"), v.to_string());
+    }
+}
+
 /// The names a case may give, the code-verification builtins included.
 pub fn names() -> impl Iterator<Item = &'static str> + Clone {
     REGISTRY
@@ -41,9 +89,6 @@ pub fn run(name: &str, p: &Params) -> Result<RunData, String> {
         None => crate::run::code_verification::run(name, p)
             .unwrap_or_else(|| Err(format!("unknown builtin {name:?}"))),
     }?;
-    d.info.insert("builtin".into(), name.to_string());
-    for (k, v) in p {
-        d.info.insert(format!("param {k}"), v.to_string());
-    }
+    labelled(&mut d, name, p);
     Ok(d)
 }
