@@ -84,6 +84,14 @@ class DeckTest(Tmp):
         self.assertEqual(len(held), 18)
         self.assertEqual(held[0], "1, 1, 1, 1e-05")
 
+    def test_loads_are_concentrated_loads_in_the_same_step(self):
+        p = dict(patch("q4-full"), loads_N=[[2, 0, 12.5], [3, 1, -4.0]])
+        lines, _ = problem.deck_lines(p)
+        at = lines.index("*CLOAD")
+        self.assertEqual(lines[at + 1:at + 3], ["3, 1, 12.5", "4, 2, -4.0"])
+        self.assertLess(lines.index("*STATIC"), at)
+        self.assertNotIn("*CLOAD", problem.deck_lines(patch("q4-full"))[0])
+
     def test_q4_1pt_is_cpe4r_and_q4_sri_cpe4_each_with_its_substitution(self):
         _, (ccx_type, subs) = problem.deck_lines(patch("q4-1pt"))
         self.assertEqual(ccx_type, "CPE4R")
@@ -91,6 +99,14 @@ class DeckTest(Tmp):
         _, (ccx_type, subs) = problem.deck_lines(patch("q4-sri"))
         self.assertEqual(ccx_type, "CPE4")
         self.assertIn("no B-bar", subs[0])
+
+    def test_about_the_axis_it_is_cax4_without_a_thickness(self):
+        p = dict(patch("q4-full"), geometry="axisymmetric")
+        del p["width_m"]
+        lines, (ccx_type, subs) = problem.deck_lines(p)
+        self.assertEqual((ccx_type, subs), ("CAX4", []))
+        section = lines.index("*SOLID SECTION, ELSET=EALL, MATERIAL=M")
+        self.assertEqual(lines[section + 1], "")
 
     def test_a_problem_it_does_not_write_is_not_expressible(self):
         p = dict(patch("q4-full"), problem="dynamic")
@@ -120,6 +136,22 @@ class PatchTest(Tmp):
         # 7th digit of the smaller components over the largest.
         self.assertLess(worst, 5e-8)
         self.assertEqual(len(fields["point_stresses_Pa"][0]), 8)  # CPE4 runs as C3D8
+
+    def test_about_the_axis_the_radial_displacement_is_recovered_and_no_force_is_written(self):
+        # The ring's constant strain u_r = a r, u_z = b z, every node held: ccx prints the
+        # wedge nodes' x, u_r cos 1 deg, which the adapter divides out (to the printed digits).
+        p = dict(patch("q4-full"), geometry="axisymmetric")
+        del p["width_m"]
+        nodes = [[0.01 + x, y] for x, y in DISTORTED]
+        p["nodes_m"] = nodes
+        p["prescribed_m"] = [h for n, (r, z) in enumerate(nodes)
+                             for h in ([n, 0, 1e-3 * r], [n, 1, -6e-4 * z])]
+        status, err, fields = self.solve(p)
+        self.assertEqual(status, 0, err)
+        self.assertIsNone(fields["nodal_forces_N"])
+        worst = max(abs(u[0] - 1e-3 * r) / 3e-5 for u, (r, _) in zip(fields["displacements_m"], nodes))
+        # Measured 1.2e-7 (7 printed digits); a missing 1 / cos 1 deg would give 1.5e-4.
+        self.assertLess(worst, 5e-7)
 
     def test_cpe4r_fails_the_distorted_patch_and_passes_a_regular_one(self):
         status, err, fields = self.solve(patch("q4-1pt"))

@@ -33,31 +33,70 @@ const REGISTRY: [(&str, Builtin); 6] = [
 /// A builtin another code can compute (`crate::codes::problem`): its problem, and its
 /// metrics from the fields the code solved.
 pub struct ProblemForm {
-    pub problem: fn(&Params) -> Result<Problem, String>,
-    pub evaluate: fn(&Params, &Fields) -> Result<RunData, String>,
+    /// The builtin's problems, each with a label that names it (`a`, `b`; a single problem's
+    /// label is empty).
+    pub problems: fn(&Params) -> Result<Vec<(&'static str, Problem)>, String>,
+    /// Its metrics from the code's fields, one per problem in the same order.
+    pub evaluate: fn(&Params, &[Fields]) -> Result<RunData, String>,
 }
 
 /// The builtins with a problem form, by name.
-const PROBLEMS: [(&str, ProblemForm); 1] = [(
-    "patch",
-    ProblemForm {
-        problem: patch::patch_problem,
-        evaluate: patch::patch_from_fields,
-    },
-)];
+const PROBLEMS: [(&str, ProblemForm); 3] = [
+    (
+        "patch",
+        ProblemForm {
+            problems: patch::patch_problems,
+            evaluate: patch::patch_from_fields,
+        },
+    ),
+    (
+        "axisymmetric",
+        ProblemForm {
+            problems: crate::run::code_verification::axisymmetric_problems::problems,
+            evaluate: crate::run::code_verification::axisymmetric_problems::from_fields,
+        },
+    ),
+    (
+        "macneal-harder-patch",
+        ProblemForm {
+            problems: crate::run::code_verification::macneal_harder::problems,
+            evaluate: crate::run::code_verification::macneal_harder::from_fields,
+        },
+    ),
+];
 
 /// The problem form of builtin `name`, if it has one.
 pub fn problem_form(name: &str) -> Option<&'static ProblemForm> {
     PROBLEMS.iter().find(|(n, _)| *n == name).map(|(_, f)| f)
 }
 
-/// Builtin `name`'s problem solved by another code's `adapter`, evaluated as the builtin
-/// evaluates its own (`None` when it has no problem form: it runs in-process).
+/// Builtin `name`'s problems solved by another code's `adapter`, evaluated as the builtin
+/// evaluates its own (`None` when it has no problem form: it runs in-process). The run keeps
+/// the adapter's record of the first problem and every problem's files (named by the label
+/// when there are several); no cost, as `impact`'s builtins have none.
 pub fn run_on(adapter: &Adapter, name: &str, p: &Params) -> Option<Result<RunData, String>> {
     let form = problem_form(name)?;
     Some((|| {
-        let problem = (form.problem)(p)?;
-        let (fields, mut run) = adapter.run_problem(name, &problem)?;
+        let problems = (form.problems)(p)?;
+        let mut fields = Vec::new();
+        let mut run = RunData::default();
+        for (k, (label, problem)) in problems.iter().enumerate() {
+            let (f, r) = adapter.run_problem(&format!("{name} {label}"), problem)?;
+            fields.push(f);
+            if k == 0 {
+                run.info = r.info;
+            }
+            let prefix = if problems.len() > 1 {
+                format!("{label}-")
+            } else {
+                String::new()
+            };
+            run.files.extend(
+                r.files
+                    .into_iter()
+                    .map(|(n, b)| (format!("{prefix}{n}"), b)),
+            );
+        }
         let evaluated = (form.evaluate)(p, &fields)?;
         run.metrics = evaluated.metrics;
         run.histories = evaluated.histories;

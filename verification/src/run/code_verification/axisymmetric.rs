@@ -29,7 +29,7 @@ use impact_solver::element::{
     SelectiveQ4,
 };
 use impact_solver::material::{Elastic, VonMises};
-use impact_solver::mesh::Mesh;
+use impact_solver::mesh::{Mesh, PlateMesh};
 use impact_solver::scene::{ElementKind, Hardening, Material, Plasticity};
 use serde_json::Value;
 
@@ -88,33 +88,56 @@ where
     Axisymmetric::<F>::new(mesh, axis, KAPPA, p_modulus).map_err(|e| e.to_string())
 }
 
-/// The patch test about the axis at `axis` (m): (free-node force / largest force, largest
-/// stress error / largest exact stress).
-fn patch<F: Formulation>(f: &F, mesh: &Mesh, axis: f64) -> (f64, f64) {
-    let (a, b) = (1.0e-3, -6.0e-4);
-    let elastic = Elastic::new(E, NU);
-    let u: Vec<f64> = mesh
-        .coords
+/// The ring's constant-strain field about the axis at `axis` (m): `u_r = a r`, `u_z = b z`
+/// on the section's nodes (`u_x = -u_r`, r = axis - x), m.
+pub(super) fn patch_field(mesh: &Mesh, axis: f64) -> Vec<f64> {
+    mesh.coords
         .iter()
-        .flat_map(|x| [-a * (axis - x[0]), b * x[1]])
-        .collect();
-    let exact = elastic.stress_of(&[a, b, a, 0.0]);
+        .flat_map(|x| [-PATCH_STRAIN.0 * (axis - x[0]), PATCH_STRAIN.1 * x[1]])
+        .collect()
+}
+
+/// The patch field's strains `(a, b)`: `e_rr = e_tt = a`, `e_zz = b`.
+const PATCH_STRAIN: (f64, f64) = (1.0e-3, -6.0e-4);
+
+/// The patch test's (free-node force / largest force component, when the nodal `forces` are
+/// given (two per node, N); largest stress error / largest exact stress) from them and the
+/// stresses at every integration point (Pa, the section's order `[xx, yy, zz (hoop), xy]`).
+pub(super) fn patch_metrics(
+    forces: Option<&[f64]>,
+    stresses: impl Iterator<Item = [f64; 4]>,
+) -> (Option<f64>, f64) {
+    let (a, b) = PATCH_STRAIN;
+    let exact = Elastic::new(E, NU).stress_of(&[a, b, a, 0.0]);
     let scale = exact.iter().fold(0.0_f64, |m, s| m.max(s.abs()));
-    let mut forces = vec![0.0; u.len()];
     let mut stress_error = 0.0_f64;
+    for s in stresses {
+        for c in 0..4 {
+            stress_error = stress_error.max((s[c] - exact[c]).abs() / scale);
+        }
+    }
+    let force = forces.map(|forces| {
+        let largest = forces.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+        forces[8].hypot(forces[9]) / largest
+    });
+    (force, stress_error)
+}
+
+/// The patch test about the axis at `axis` (m), through `f` ([`patch_metrics`]).
+fn patch<F: Formulation>(f: &F, mesh: &Mesh, axis: f64) -> (f64, f64) {
+    let elastic = Elastic::new(E, NU);
+    let u = patch_field(mesh, axis);
+    let mut forces = vec![0.0; u.len()];
+    let mut stresses = Vec::new();
     for e in 0..f.n_elements() {
         let ue = gather(f.nodes(e), &u);
         let (fe, _) = element_response(f, &elastic, e, &ue, &mut [(); 4]);
         scatter_add(f.nodes(e), &fe, &mut forces);
-        for strain in f.strains(e, &ue).iter().take(F::POINTS) {
-            let s = elastic.stress_of(strain);
-            for c in 0..4 {
-                stress_error = stress_error.max((s[c] - exact[c]).abs() / scale);
-            }
-        }
+        let strains = f.strains(e, &ue);
+        stresses.extend(strains.iter().take(F::POINTS).map(|s| elastic.stress_of(s)));
     }
-    let largest = forces.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    (forces[8].hypot(forces[9]) / largest, stress_error)
+    let (force, stress) = patch_metrics(Some(&forces), stresses.into_iter());
+    (force.unwrap_or(f64::NAN), stress)
 }
 
 /// The static solution of `f` on `n_nodes` nodes: `prescribed` dofs with their values (m),
@@ -174,10 +197,13 @@ fn solve_static<F: Formulation>(
     Ok(u)
 }
 
-/// The solid disk of radius `r` and height `h` (axis at `x = r`), rim displaced radially by
-/// `disp`: the largest nodal error over `disp`.
-fn expansion(kind: ElementKind, plane: bool) -> Result<f64, String> {
-    let (radius, height, disp) = (0.05, 0.02, 1.0e-5);
+/// The solid disk's radius and height (m) and its rim's radial displacement (m).
+pub(super) const DISK: (f64, f64, f64) = (0.05, 0.02, 1.0e-5);
+
+/// The solid disk (axis at `x = radius`, [`DISK`]) on its distorted mapped mesh and its held
+/// dofs: the rim displaced radially, the axis held radially, the bottom axially.
+pub(super) fn expansion_setup() -> Result<(PlateMesh, BTreeMap<usize, f64>), String> {
+    let (radius, height, disp) = DISK;
     let mesh = mapped_mesh(radius, height, 8, 4, 0.05)?;
     let (nx, n_nodes) = (8, mesh.mesh.n_nodes());
     let mut prescribed = BTreeMap::new();
@@ -193,7 +219,13 @@ fn expansion(kind: ElementKind, plane: bool) -> Result<f64, String> {
             prescribed.insert(2 * n + 1, 0.0);
         }
     }
-    let u = on_section!(kind, plane, &mesh.mesh, radius, f => solve_static(&f, n_nodes, &prescribed, &[])?);
+    Ok((mesh, prescribed))
+}
+
+/// The largest nodal error of the section's displacements `u` (m) against the uniform
+/// expansion, over the rim's displacement.
+pub(super) fn expansion_error(mesh: &PlateMesh, u: &[f64]) -> f64 {
+    let (radius, _, disp) = DISK;
     let elastic = Elastic::new(E, NU);
     let axial = -2.0 * elastic.lambda / elastic.p_modulus() * disp / radius;
     let mut error = 0.0_f64;
@@ -203,7 +235,15 @@ fn expansion(kind: ElementKind, plane: bool) -> Result<f64, String> {
             error = error.max((u[2 * n + c] - exact[c]).abs() / disp);
         }
     }
-    Ok(error)
+    error
+}
+
+/// The solid disk expanded by its rim: the largest nodal error over the rim's displacement.
+fn expansion(kind: ElementKind, plane: bool) -> Result<f64, String> {
+    let (mesh, prescribed) = expansion_setup()?;
+    let n_nodes = mesh.mesh.n_nodes();
+    let u = on_section!(kind, plane, &mesh.mesh, DISK.0, f => solve_static(&f, n_nodes, &prescribed, &[])?);
+    Ok(expansion_error(&mesh, &u))
 }
 
 /// The nodes of the inner face (`i = nr`) of a wall of `nr` x 2 elements.
@@ -211,28 +251,33 @@ fn inner_face(nr: usize) -> impl Iterator<Item = usize> {
     (0..3).map(move |j| nr + j * (nr + 1))
 }
 
-/// The Lame cylinder (a = 10 mm, b = 20 mm, p = 100 MPa) on `nr` elements through the wall,
-/// two rows, height (b - a) / 8: the largest nodal radial error over the largest exact.
-fn lame(kind: ElementKind, plane: bool, nr: usize) -> Result<f64, String> {
-    let (a, b, pressure) = (0.01, 0.02, 100e6);
+/// Lame's cylinder: inner and outer radius (m), internal pressure (Pa).
+pub(super) const LAME: (f64, f64, f64) = (0.01, 0.02, 100e6);
+
+/// The Lame cylinder ([`LAME`]) on `nr` elements through the wall, two rows, height
+/// (b - a) / 8 (x from the outer surface, x = 0 at r = b, to the inner: the axis at x = b):
+/// the mesh, every axial dof held, and the pressure on the inner face as the whole ring's
+/// force (2 pi a h p) on its three nodes, 1:2:1, along -x (dof, N).
+pub(super) fn lame_setup(
+    nr: usize,
+) -> Result<(PlateMesh, BTreeMap<usize, f64>, Vec<(usize, f64)>), String> {
+    let (a, b, pressure) = LAME;
     let height = (b - a) / 8.0;
-    // x from the outer surface (x = 0, r = b) to the inner (x = b - a, r = a): axis at x = b.
     let mesh = mapped_mesh(b - a, height, nr, 2, 0.0)?;
     let n_nodes = mesh.mesh.n_nodes();
     let prescribed: BTreeMap<usize, f64> = (0..n_nodes).map(|n| (2 * n + 1, 0.0)).collect();
-    // The pressure on the inner face, whole ring (2 pi a h p) on its three nodes, 1:2:1,
-    // along -x.
     let total = std::f64::consts::TAU * a * height * pressure;
     let loads: Vec<(usize, f64)> = inner_face(nr)
         .zip([0.25, 0.5, 0.25])
         .map(|(n, share)| (2 * n, -share * total))
         .collect();
-    // A section without the ring's hoop stiffness has a free radial translation here (every
-    // u_z held, no radial support): no solution, an infinite error.
-    let Ok(u) = on_section!(kind, plane, &mesh.mesh, b, f => solve_static(&f, n_nodes, &prescribed, &loads))
-    else {
-        return Ok(f64::INFINITY);
-    };
+    Ok((mesh, prescribed, loads))
+}
+
+/// The largest nodal radial error of the section's displacements `u` (m) against Lame's
+/// solution, over the largest exact radial displacement.
+pub(super) fn lame_error(mesh: &PlateMesh, u: &[f64]) -> f64 {
+    let (a, b, pressure) = LAME;
     let c = (1.0 + NU) * pressure * a * a / (E * (b * b - a * a));
     let exact = |r: f64| c * ((1.0 - 2.0 * NU) * r + b * b / r);
     let (mut error, mut largest) = (0.0_f64, 0.0_f64);
@@ -241,7 +286,20 @@ fn lame(kind: ElementKind, plane: bool, nr: usize) -> Result<f64, String> {
         error = error.max((-u[2 * n] - exact(r)).abs());
         largest = largest.max(exact(r).abs());
     }
-    Ok(error / largest)
+    error / largest
+}
+
+/// The Lame cylinder on `nr` elements through the wall: [`lame_error`].
+fn lame(kind: ElementKind, plane: bool, nr: usize) -> Result<f64, String> {
+    let (mesh, prescribed, loads) = lame_setup(nr)?;
+    let n_nodes = mesh.mesh.n_nodes();
+    // A section without the ring's hoop stiffness has a free radial translation here (every
+    // u_z held, no radial support): no solution, an infinite error.
+    let Ok(u) = on_section!(kind, plane, &mesh.mesh, LAME.1, f => solve_static(&f, n_nodes, &prescribed, &loads))
+    else {
+        return Ok(f64::INFINITY);
+    };
+    Ok(lame_error(&mesh, &u))
 }
 
 /// The limit pressure on `nr` elements through the wall over `(2 / sqrt 3) sigma_y ln 2`, and
@@ -342,5 +400,79 @@ mod tests {
             assert!(plane["expansion_max_rel_error"] > 0.1, "{element}");
             assert!(plane["lame_error_nr16"] > 0.1, "{element}");
         }
+    }
+
+    /// impact's fields of a section solved with `u` (m, two per node) through `f`, written as
+    /// another code writes them about the axis (`r = axis - x`).
+    fn fields_about_axis<F: Formulation>(f: &F, u: &[f64]) -> crate::codes::problem::Fields {
+        let elastic = Elastic::new(E, NU);
+        let mut forces = vec![0.0; u.len()];
+        let mut stresses = Vec::new();
+        for e in 0..f.n_elements() {
+            let ue = gather(f.nodes(e), u);
+            let (fe, _) = element_response(f, &elastic, e, &ue, &mut [(); 4]);
+            scatter_add(f.nodes(e), &fe, &mut forces);
+            let strains = f.strains(e, &ue);
+            let points = strains.iter().take(F::POINTS).map(|s| elastic.stress_of(s));
+            stresses.push(points.map(|[xx, yy, zz, xy]| [xx, yy, zz, -xy]).collect());
+        }
+        let radial = |v: &[f64]| v.chunks(2).map(|c| [-c[0], c[1]]).collect();
+        crate::codes::problem::Fields {
+            displacements: radial(u),
+            nodal_forces: Some(radial(&forces)),
+            point_stresses: stresses,
+        }
+    }
+
+    /// The problem form (`super::super::axisymmetric_problems`) against the builtin: impact's
+    /// own solution of each section, written about the axis as another code writes it, gives
+    /// the builtin's metrics bit for bit (the limit pressure apart, impact's own push); the
+    /// problems hold what the builtin holds, turned radial.
+    #[test]
+    fn impact_s_own_fields_about_the_axis_give_the_builtin_s_metrics() -> Result<(), String> {
+        use super::super::axisymmetric_problems::{from_fields, problems};
+        let element = "q4-sri";
+        let p: Params =
+            serde_json::from_value(serde_json::json!({"element": element, "limit_nr": 4})).unwrap();
+        let kind = super::element(&p).unwrap();
+        let builtin = axisymmetric(&p).unwrap().metrics;
+        let patch = distorted_patch();
+        let mut fields = Vec::new();
+        for axis in [0.03, 0.02] {
+            let u = patch_field(&patch, axis);
+            fields.push(on_section!(kind, false, &patch, axis, f => fields_about_axis(&f, &u)));
+        }
+        let (disk, held) = expansion_setup().unwrap();
+        let n = disk.mesh.n_nodes();
+        fields.push(on_section!(kind, false, &disk.mesh, DISK.0, f => {
+            let u = solve_static(&f, n, &held, &[])?;
+            fields_about_axis(&f, &u)
+        }));
+        for nr in [4, 8, 16, 32] {
+            let (wall, held, loads) = lame_setup(nr).unwrap();
+            let n = wall.mesh.n_nodes();
+            fields.push(on_section!(kind, false, &wall.mesh, LAME.1, f => {
+                let u = solve_static(&f, n, &held, &loads)?;
+                fields_about_axis(&f, &u)
+            }));
+        }
+        let evaluated = from_fields(&p, &fields).unwrap().metrics;
+        assert_eq!(evaluated.len(), builtin.len() - 1, "{evaluated:?}");
+        for (k, v) in &evaluated {
+            assert_eq!(builtin[k].to_bits(), v.to_bits(), "{k}");
+        }
+        let problems = problems(&p).unwrap();
+        assert_eq!(problems.len(), fields.len());
+        let (label, expansion) = &problems[2];
+        assert_eq!(*label, "expansion");
+        // The rim (x = 0, r = R) pushed out by the builtin's -x displacement: +r.
+        assert!(
+            expansion.prescribed_m.contains(&(0, 0, DISK.2)),
+            "{:?}",
+            expansion.prescribed_m
+        );
+        assert_eq!(expansion.nodes_m[0], [DISK.0, 0.0]);
+        assert_eq!(expansion.geometry, crate::codes::problem::AXISYMMETRIC);
+        Ok(())
     }
 }

@@ -4,6 +4,7 @@
 //! history ("orders") for the report's order plots.
 
 pub mod axisymmetric;
+pub mod axisymmetric_problems;
 pub mod bar_wave;
 pub mod bending_period;
 pub mod collapse;
