@@ -151,7 +151,21 @@ pub struct CaseFile {
     /// Rows of a measurement table the case does not compare, with why
     /// (`crate::definition::not_compared`).
     #[serde(default)]
-    pub not_compared: Vec<Spanned<crate::definition::not_compared::NotComparedFile>>,
+    pub not_compared: Vec<Spanned<NotComparedFile>>,
+}
+
+/// A `not_compared:` entry of a case.yaml: rows of one table and why they are left out.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NotComparedFile {
+    /// The measurement table, a CSV under reference-data/ (path from the repository root).
+    pub file: String,
+    /// The column whose value names a row (`shot_id`).
+    pub key: String,
+    /// The rows left out, by their key.
+    pub rows: Vec<String>,
+    /// Why: what stops the run (with its evidence), or why a comparison could not fail.
+    pub why: String,
 }
 
 /// A trivial or wrong model: what the case's checks would say about it (the

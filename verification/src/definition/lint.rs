@@ -80,7 +80,11 @@ pub fn lint(repo: &Repo, cases: &[Case]) -> Vec<Finding> {
             &mut case_ids,
         );
     }
-    findings.extend(crate::definition::not_compared::findings(&repo.root, cases));
+    findings.extend(
+        crate::definition::not_compared::findings(&repo.root, cases)
+            .into_iter()
+            .map(|(loc, message)| Finding { loc, message }),
+    );
     // Every data file in reference-data/ has provenance.
     let mut files = Vec::new();
     walk(&repo.root.join("reference-data"), &mut files);

@@ -10,24 +10,9 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::definition::case::{Case, Loc, RefKind};
-use crate::definition::lint::Finding;
-
-/// A `not_compared:` entry of a case.yaml: rows of one table and why they are left out.
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct NotComparedFile {
-    /// The measurement table, a CSV under reference-data/ (path from the repository root).
-    pub file: String,
-    /// The column whose value names a row (`shot_id`).
-    pub key: String,
-    /// The rows left out, by their key.
-    pub rows: Vec<String>,
-    /// Why: what stops the run (with its evidence), or why a comparison could not fail.
-    pub why: String,
-}
+use crate::definition::case::{Case, Loc, NotComparedFile, RefKind};
 
 /// One row left out, as results.json carries it.
 #[derive(Debug, Clone, Serialize)]
@@ -136,11 +121,11 @@ fn compared(cases: &[Case]) -> BTreeMap<RowId, Loc> {
     out
 }
 
-/// The lint's rules for `not_compared` (module documentation): each entry names rows that
-/// exist and says why; no row is declared twice or both declared and compared; every row of
-/// a table the validation cases read is one or the other (that finding is the first reading
-/// case's, which then shows as a broken case).
-pub fn findings(root: &Path, cases: &[Case]) -> Vec<Finding> {
+/// The lint's rules for `not_compared` (module documentation), each finding with where it is:
+/// each entry names rows that exist and says why; no row is declared twice or both declared
+/// and compared; every row of a table the validation cases read is one or the other (that
+/// finding is the first reading case's, which then shows as a broken case).
+pub fn findings(root: &Path, cases: &[Case]) -> Vec<(Loc, String)> {
     let compared = compared(cases);
     let mut out = Vec::new();
     let mut declared: BTreeMap<RowId, Loc> = BTreeMap::new();
@@ -154,12 +139,8 @@ pub fn findings(root: &Path, cases: &[Case]) -> Vec<Finding> {
     for case in cases {
         for entry in &case.file.not_compared {
             let loc = case.loc(entry);
-            let mut say = |message: String| {
-                out.push(Finding {
-                    loc: loc.clone(),
-                    message: format!("not_compared: {message}"),
-                })
-            };
+            let mut say =
+                |message: String| out.push((loc.clone(), format!("not_compared: {message}")));
             let e = &entry.value;
             if e.why.trim().is_empty() || e.rows.is_empty() {
                 say(
@@ -198,7 +179,7 @@ fn unaccounted(
     tables: &BTreeMap<String, (String, PathBuf)>,
     compared: &BTreeMap<RowId, Loc>,
     declared: &BTreeMap<RowId, Loc>,
-) -> Vec<Finding> {
+) -> Vec<(Loc, String)> {
     let mut out = Vec::new();
     for (file, (key, first_reader)) in tables {
         let path = root.join(file);
@@ -217,15 +198,15 @@ fn unaccounted(
             })
             .collect();
         if !missing.is_empty() {
-            out.push(Finding {
-                loc: Loc::file(first_reader),
-                message: format!(
+            out.push((
+                Loc::file(first_reader),
+                format!(
                     "{file}: {} row(s) neither compared by a check nor declared under a case's not_compared (with why): {} = {}",
                     missing.len(),
                     key,
                     missing.join(", ")
                 ),
-            });
+            ));
         }
     }
     out
