@@ -73,7 +73,7 @@ pub fn num(x: Option<f64>) -> String {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     //! The row on hand-made checks: FAIL* / XPASS, the margin of one-sided checks (the old
     //! report printed "error 6.8e1 against tolerance 1e-6, OK" for a bound that held).
     use super::*;

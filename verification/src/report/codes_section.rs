@@ -76,6 +76,19 @@ fn cases_of(results: &Value) -> BTreeMap<(String, String), &Value> {
 }
 
 /// The verdict of a check row as the matrix prints it.
+/// Why a check is not OK on a code: its known failure's reason (the code's `expected`), else
+/// the check's message; empty when OK.
+fn why(k: &Value) -> String {
+    if label(k) == "OK" {
+        return String::new();
+    }
+    match k["known_failure"].as_str() {
+        Some(reason) => format!("known: {reason}"),
+        None => k["message"].as_str().unwrap_or("").to_string(),
+    }
+    .replace('|', "\\|")
+}
+
 fn label(k: &Value) -> String {
     let row: Result<crate::definition::check::CheckResult, _> = serde_json::from_value(k.clone());
     row.map(|r| {
@@ -243,19 +256,16 @@ fn side_by_side(
             .map_or("not run".into(), |m| {
                 format!("{} {}", num(&m["computed"]), label(&m))
             });
-        let why = match label(k).as_str() {
-            "OK" => String::new(),
-            _ => k["message"].as_str().unwrap_or("").replace('|', "\\|"),
-        };
         let _ = writeln!(
             s,
-            "| {id} | {} ({}) | {} | {mine} | {} {} | {} | {why} |",
+            "| {id} | {} ({}) | {} | {mine} | {} {} | {} | {} |",
             num(&k["reference"]),
             k["reference_kind"].as_str().unwrap_or(""),
             k["tolerance"].as_str().unwrap_or(""),
             num(&k["computed"]),
             label(k),
             num(&k["error"]),
+            why(k),
         );
     }
     s.push('\n');
@@ -381,7 +391,8 @@ fn against_the_matrix(code: &Value) -> String {
     let mut s = format!(
         "### {name} against the matrix\n\n{}: every check of the cases it ran, with the \
          reference it is held to and that reference's source; the tolerances are the matrix's, \
-         each with its reason in the case's own section.\n\n| case | check | status | computed | reference | source |\n|---|---|---|---|---|---|\n",
+         each with its reason in the case's own section; why a check is not OK (the code's known \
+         failure with its evidence, what it did not produce or cannot express).\n\n| case | check | status | computed | reference | source | why |\n|---|---|---|---|---|---|---|\n",
         code["description"].as_str().unwrap_or("")
     );
     for c in code["cases"].as_array().into_iter().flatten() {
@@ -389,7 +400,7 @@ fn against_the_matrix(code: &Value) -> String {
         for k in c["checks"].as_array().into_iter().flatten() {
             let _ = writeln!(
                 s,
-                "| {suite}/{case} | {} | {} | {} | {} ({}) | {} |",
+                "| {suite}/{case} | {} | {} | {} | {} ({}) | {} | {} |",
                 k["id"].as_str().unwrap_or(""),
                 label(k),
                 num(&k["computed"]),
@@ -398,9 +409,48 @@ fn against_the_matrix(code: &Value) -> String {
                 k["reference_source"]
                     .as_str()
                     .unwrap_or("")
-                    .replace('|', "\\|")
+                    .replace('|', "\\|"),
+                why(k),
             );
         }
     }
     s + "\n"
+}
+
+#[cfg(test)]
+mod tests {
+    //! "NAME against the matrix" says why each check is not OK: a known failure of the code
+    //! its reason from the code's `expected`, another status the check's message, an OK
+    //! nothing.
+    use super::*;
+    use crate::definition::case::Compare;
+    use crate::definition::check::Status;
+    use crate::definition::check_row::tests::check;
+
+    #[test]
+    fn a_code_s_known_failure_shows_its_reason_and_an_n_e_its_message() {
+        let mut not_expressible = check(Status::NotExpressible, false, Compare::Within);
+        not_expressible.message = "not produced by fake: no metric".into();
+        let rows = [
+            check(Status::Fail, true, Compare::Within),
+            not_expressible,
+            check(Status::Ok, false, Compare::Within),
+        ];
+        let code = serde_json::json!({"code": "fake", "description": "d",
+            "cases": [{"suite": "s", "case": "c", "checks": rows}]});
+        let md = against_the_matrix(&code);
+        let lines: Vec<&str> = md.lines().filter(|l| l.starts_with("| s/c |")).collect();
+        assert!(
+            lines[0].contains("| FAIL* |") && lines[0].ends_with("| known: why |"),
+            "{md}"
+        );
+        assert!(
+            lines[1].ends_with("| not produced by fake: no metric |"),
+            "{md}"
+        );
+        assert!(
+            lines[2].contains("| OK |") && lines[2].ends_with("|  |"),
+            "{md}"
+        );
+    }
 }
