@@ -6,10 +6,13 @@
 //! problem form ([`ProblemForm`]) runs on another code too: its problem solved by the code's
 //! adapter, its metrics from the code's fields.
 
+use crate::codes::adapter::PROBLEM_SOLVED_BY;
 use crate::codes::problem::{Fields, Problem};
 use crate::codes::Adapter;
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::Params;
+use crate::run::code_verification::{axisymmetric_problems, column_impact, macneal_harder};
+use impact_solver::Scene;
 
 mod beam_bending;
 mod contact_law;
@@ -30,37 +33,51 @@ const REGISTRY: [(&str, Builtin); 6] = [
     ("plane-wave", plane_wave::plane_wave),
 ];
 
-/// A builtin another code can compute (`crate::codes::problem`): its problem, and its
-/// metrics from the fields the code solved.
-pub struct ProblemForm {
-    /// The builtin's problems, each with a label that names it (`a`, `b`; a single problem's
-    /// label is empty).
-    pub problems: fn(&Params) -> Result<Vec<(&'static str, Problem)>, String>,
-    /// Its metrics from the code's fields, one per problem in the same order.
-    pub evaluate: fn(&Params, &[Fields]) -> Result<RunData, String>,
+/// A builtin another code can compute, and how: its problems (`crate::codes::problem`) or its
+/// scene (the adapter's scene contract), with its metrics from what the code gives back.
+pub enum ProblemForm {
+    /// Static problems, each with a label that names it (`a`, `b`; a single problem's label is
+    /// empty), and the metrics from the code's fields, one per problem in the same order.
+    Problems {
+        problems: fn(&Params) -> Result<Vec<(&'static str, Problem)>, String>,
+        evaluate: fn(&Params, &[Fields]) -> Result<RunData, String>,
+    },
+    /// A scene the builtin runs on the solver's own time loop, and the metrics from a run of
+    /// it (its history and summary).
+    Scene {
+        scene: fn(&Params) -> Result<Scene, String>,
+        evaluate: fn(&Params, &RunData) -> Result<RunData, String>,
+    },
 }
 
 /// The builtins with a problem form, by name.
-const PROBLEMS: [(&str, ProblemForm); 3] = [
+const PROBLEMS: [(&str, ProblemForm); 4] = [
     (
         "patch",
-        ProblemForm {
+        ProblemForm::Problems {
             problems: patch::patch_problems,
             evaluate: patch::patch_from_fields,
         },
     ),
     (
         "axisymmetric",
-        ProblemForm {
-            problems: crate::run::code_verification::axisymmetric_problems::problems,
-            evaluate: crate::run::code_verification::axisymmetric_problems::from_fields,
+        ProblemForm::Problems {
+            problems: axisymmetric_problems::problems,
+            evaluate: axisymmetric_problems::from_fields,
         },
     ),
     (
         "macneal-harder-patch",
-        ProblemForm {
-            problems: crate::run::code_verification::macneal_harder::problems,
-            evaluate: crate::run::code_verification::macneal_harder::from_fields,
+        ProblemForm::Problems {
+            problems: macneal_harder::problems,
+            evaluate: macneal_harder::from_fields,
+        },
+    ),
+    (
+        "column-impact",
+        ProblemForm::Scene {
+            scene: column_impact::column_scene,
+            evaluate: column_impact::column_from_run,
         },
     ),
 ];
@@ -70,39 +87,61 @@ pub fn problem_form(name: &str) -> Option<&'static ProblemForm> {
     PROBLEMS.iter().find(|(n, _)| *n == name).map(|(_, f)| f)
 }
 
-/// Builtin `name`'s problems solved by another code's `adapter`, evaluated as the builtin
-/// evaluates its own (`None` when it has no problem form: it runs in-process). The run keeps
-/// the adapter's record of the first problem and every problem's files (named by the label
-/// when there are several); no cost, as `impact`'s builtins have none.
+/// Builtin `name` computed by another code's `adapter`, evaluated as the builtin evaluates
+/// its own run (`None` when it has no problem form: it runs in-process). The run keeps the
+/// adapter's record (of the first problem) and the files of every problem (named by the
+/// label when there are several); no cost, as `impact`'s builtins have none.
 pub fn run_on(adapter: &Adapter, name: &str, p: &Params) -> Option<Result<RunData, String>> {
-    let form = problem_form(name)?;
-    Some((|| {
-        let problems = (form.problems)(p)?;
-        let mut fields = Vec::new();
-        let mut run = RunData::default();
-        for (k, (label, problem)) in problems.iter().enumerate() {
-            let (f, r) = adapter.run_problem(&format!("{name} {label}"), problem)?;
-            fields.push(f);
-            if k == 0 {
-                run.info = r.info;
-            }
-            let prefix = if problems.len() > 1 {
-                format!("{label}-")
-            } else {
-                String::new()
-            };
-            run.files.extend(
-                r.files
-                    .into_iter()
-                    .map(|(n, b)| (format!("{prefix}{n}"), b)),
-            );
+    let run = match problem_form(name)? {
+        ProblemForm::Problems { problems, evaluate } => {
+            (|| solve_problems(adapter, name, p, problems(p)?, *evaluate))()
         }
-        let evaluated = (form.evaluate)(p, &fields)?;
-        run.metrics = evaluated.metrics;
-        run.histories = evaluated.histories;
+        ProblemForm::Scene { scene, evaluate } => (|| {
+            let code_run = adapter.run(&scene(p)?)?;
+            let mut run = evaluate(p, &code_run)?;
+            (run.info, run.files) = (code_run.info, code_run.files);
+            run.info
+                .insert(PROBLEM_SOLVED_BY.into(), adapter.name.clone());
+            Ok(run)
+        })(),
+    };
+    Some(run.map(|mut run| {
         labelled(&mut run, name, p);
-        Ok(run)
-    })())
+        run
+    }))
+}
+
+/// The `problems` of builtin `name` solved by `adapter`, the metrics by `evaluate`.
+fn solve_problems(
+    adapter: &Adapter,
+    name: &str,
+    p: &Params,
+    problems: Vec<(&'static str, Problem)>,
+    evaluate: fn(&Params, &[Fields]) -> Result<RunData, String>,
+) -> Result<RunData, String> {
+    let mut fields = Vec::new();
+    let mut run = RunData::default();
+    for (k, (label, problem)) in problems.iter().enumerate() {
+        let (f, r) = adapter.run_problem(&format!("{name} {label}"), problem)?;
+        fields.push(f);
+        if k == 0 {
+            run.info = r.info;
+        }
+        let prefix = if problems.len() > 1 {
+            format!("{label}-")
+        } else {
+            String::new()
+        };
+        run.files.extend(
+            r.files
+                .into_iter()
+                .map(|(n, b)| (format!("{prefix}{n}"), b)),
+        );
+    }
+    let evaluated = evaluate(p, &fields)?;
+    run.metrics = evaluated.metrics;
+    run.histories = evaluated.histories;
+    Ok(run)
 }
 
 /// Names the builtin and its parameters in the run's info.

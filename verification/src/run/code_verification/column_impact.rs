@@ -19,6 +19,7 @@
 
 use std::collections::BTreeMap;
 
+use impact_solver::{History, Scene};
 use serde_json::Value;
 
 use super::scene_text::run_scene_text;
@@ -143,7 +144,8 @@ fn closed_forms(col: &Column, m: &mut BTreeMap<String, f64>) {
     );
 }
 
-pub fn column_impact(p: &Params) -> Result<RunData, String> {
+/// The column of the builtin's parameters and its scene's text.
+fn column_of(p: &Params) -> Result<(Column, String), String> {
     let col = Column {
         youngs_modulus: param(p, "youngs_modulus", 207e9)?,
         poisson_ratio: param(p, "poisson_ratio", 0.3)?,
@@ -155,30 +157,70 @@ pub fn column_impact(p: &Params) -> Result<RunData, String> {
     let ny = param(p, "ny", 256.0)? as usize;
     let courant = param(p, "courant", 1.0)?;
     let text = scene(&col, model_modulus, ny, courant);
-    let o = run_scene_text(&text, "(builtin column-impact)", &mut impact_solver::Quiet)?;
+    Ok((col, text))
+}
+
+/// The metrics of a run of the column's scene from its history (`time_s`, `contact_force_N`)
+/// and its summary (`summary.json`'s keys, the solver's or another code's): a key the run did
+/// not write gives no metric (*not produced*), one written as null gives NaN.
+fn column_metrics(col: &Column, history: &History, summary: &Value) -> Result<RunData, String> {
     let column = |name: &str| {
-        o.history
+        history
             .column(name)
             .ok_or_else(|| format!("column-impact: no column {name}"))
     };
-    let mut metrics = force_metrics(&col, &column("time_s")?, &column("contact_force_N")?)?;
-    closed_forms(&col, &mut metrics);
-    let s = &o.summary;
-    metrics.insert("contact_duration_s".into(), s.contact_duration);
-    metrics.insert("contact_intervals".into(), s.contact_intervals.len() as f64);
-    let final_velocity = s.final_impactor_velocity.unwrap_or(f64::NAN);
-    metrics.insert("final_velocity_mps".into(), final_velocity);
-    let closed = metrics["final_velocity_closed_form_mps"];
-    metrics.insert(
-        "final_velocity_relative_error".into(),
-        (final_velocity / closed - 1.0).abs(),
-    );
-    metrics.insert(
-        "max_energy_balance_error".into(),
-        s.max_energy_balance_error,
-    );
-    metrics.insert("contact_energy_J".into(), s.final_energy.contact);
-    Ok(RunData::with_history(metrics, o.history))
+    let mut metrics = force_metrics(col, &column("time_s")?, &column("contact_force_N")?)?;
+    closed_forms(col, &mut metrics);
+    let number = |key: &str| {
+        let v = key.split('.').try_fold(summary, |v, k| v.get(k))?;
+        Some(v.as_f64().unwrap_or(f64::NAN))
+    };
+    if let Some(d) = number("contact_duration_s") {
+        metrics.insert("contact_duration_s".into(), d);
+    }
+    if let Some(intervals) = summary.get("contact_intervals_s").and_then(Value::as_array) {
+        metrics.insert("contact_intervals".into(), intervals.len() as f64);
+    }
+    if let Some(final_velocity) = number("final_impactor_velocity_mps") {
+        metrics.insert("final_velocity_mps".into(), final_velocity);
+        let closed = metrics["final_velocity_closed_form_mps"];
+        metrics.insert(
+            "final_velocity_relative_error".into(),
+            (final_velocity / closed - 1.0).abs(),
+        );
+    }
+    for (key, metric) in [
+        ("max_energy_balance_error", "max_energy_balance_error"),
+        ("final_energy_J.contact", "contact_energy_J"),
+    ] {
+        if let Some(v) = number(key) {
+            metrics.insert(metric.into(), v);
+        }
+    }
+    Ok(RunData::with_history(metrics, history.clone()))
+}
+
+pub fn column_impact(p: &Params) -> Result<RunData, String> {
+    let (col, text) = column_of(p)?;
+    let o = run_scene_text(&text, "(builtin column-impact)", &mut impact_solver::Quiet)?;
+    let summary = serde_json::to_value(&o.summary).map_err(|e| e.to_string())?;
+    column_metrics(&col, &o.history, &summary)
+}
+
+/// The column's scene, for another code to run (`crate::run::builtins::Form::Scene`).
+pub fn column_scene(p: &Params) -> Result<Scene, String> {
+    let (_, text) = column_of(p)?;
+    Scene::from_yaml(&text, std::path::Path::new("(builtin column-impact)"))
+        .map_err(|e| e.to_string())
+}
+
+/// The builtin's metrics from another code's run of [`column_scene`].
+pub fn column_from_run(p: &Params, run: &RunData) -> Result<RunData, String> {
+    let (col, _) = column_of(p)?;
+    let history = run
+        .history()
+        .ok_or("column-impact: the run wrote no history")?;
+    column_metrics(&col, history, run.summary.as_ref().unwrap_or(&Value::Null))
 }
 
 #[cfg(test)]
@@ -223,5 +265,38 @@ mod tests {
         );
         let stiff = metrics(&[("model_youngs_modulus", 414e9)]);
         assert!(stress(&stiff) > 0.3 && decay(&stiff) > 0.3, "{stiff:?}");
+    }
+
+    /// The scene form against the builtin: the column's scene run by the solver and read back
+    /// as another code's run (its history, its summary as summary.json holds it) gives the
+    /// builtin's metrics bit for bit; a summary without the balance gives no balance metric
+    /// (*not produced*), not a made-up one.
+    #[test]
+    fn the_scene_form_gives_the_builtin_s_metrics() {
+        let p = Params::from([("ny".to_string(), Value::from(128))]);
+        let builtin = column_impact(&p).unwrap().metrics;
+        let scene = column_scene(&p).unwrap();
+        let o = impact_solver::simulate(&scene, &mut impact_solver::Quiet).unwrap();
+        let mut summary = serde_json::to_value(&o.summary).unwrap();
+        let run = RunData {
+            summary: Some(summary.clone()),
+            ..RunData::with_history(BTreeMap::new(), o.history.clone())
+        };
+        let evaluated = column_from_run(&p, &run).unwrap().metrics;
+        assert_eq!(evaluated.len(), builtin.len());
+        for (k, v) in &builtin {
+            assert_eq!(v.to_bits(), evaluated[k].to_bits(), "{k}");
+        }
+        summary
+            .as_object_mut()
+            .unwrap()
+            .remove("max_energy_balance_error");
+        let run = RunData {
+            summary: Some(summary),
+            ..RunData::with_history(BTreeMap::new(), o.history)
+        };
+        let evaluated = column_from_run(&p, &run).unwrap().metrics;
+        assert!(!evaluated.contains_key("max_energy_balance_error"));
+        assert!(evaluated.contains_key("contact_duration_s"));
     }
 }
