@@ -166,7 +166,8 @@ fn by_material(all: &[Comparison], left: &[&Value]) -> String {
             write!(
             s,
             "\n**`{file}`**, every case that reads it: rows compared {}, not compared {left_out} \
-             (each case lists its own with why).\n{}",
+             (each case lists its own with why; a comparison whose run failed is counted \
+             under its case only).\n{}",
             shots.len(),
             if rows.is_empty() { String::new() } else { summary(rows) }
         );
