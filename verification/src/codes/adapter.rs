@@ -134,7 +134,7 @@ impl Adapter {
 
     /// Runs builtin `builtin`'s `problem` through the adapter (`problem.json` in, `fields.json`
     /// out: `super::problem`): the fields, and a run that records the adapter's input,
-    /// substitutions and cost, marked as solved by this code ([`PROBLEM_SOLVED_BY`]).
+    /// substitutions and cost.
     pub fn run_problem(
         &self,
         builtin: &str,
@@ -149,9 +149,8 @@ impl Adapter {
         let wall_time_s = self.execute(&input, dir, &source)?;
         let unreadable = |e: String| format!("{} on {source}: unreadable output: {e}", self.name);
         let fields = Fields::read(&dir.join("fields.json"), problem).map_err(unreadable)?;
-        let (mut info, cost) = super::contract::read_adapter_record(dir, &serde_json::Value::Null)
+        let (info, cost) = super::contract::read_adapter_record(dir, &serde_json::Value::Null)
             .map_err(unreadable)?;
-        info.insert(PROBLEM_SOLVED_BY.into(), self.name.clone());
         let mut run = RunData {
             info,
             cost,
@@ -200,9 +199,6 @@ impl Adapter {
         }
     }
 }
-
-/// The info key of a builtin's run whose problem another code solved: that code's name.
-pub const PROBLEM_SOLVED_BY: &str = "problem solved by";
 
 /// The files kept with the run: the harness's input (`scene.yaml`, `problem.json`),
 /// `adapter.json`, and the inputs it names.

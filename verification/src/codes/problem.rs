@@ -130,6 +130,12 @@ impl Fields {
     }
 }
 
+/// `(node, dof, value)` entries, as [`Problem`] holds them, of values by global dof
+/// (`2 node + dof`, as the harness's own solvers index them).
+pub fn by_node(dofs: impl IntoIterator<Item = (usize, f64)>) -> Vec<(usize, usize, f64)> {
+    dofs.into_iter().map(|(d, v)| (d / 2, d % 2, v)).collect()
+}
+
 /// Isotropic linear elasticity.
 #[derive(Debug, Clone, Serialize)]
 pub struct ProblemMaterial {

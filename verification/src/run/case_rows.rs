@@ -253,7 +253,7 @@ pub(super) fn case_result(
             r.status = Status::Fail;
             r.message = e.clone();
         } else if !code.is_impact() {
-            crate::run::other_code::judge(&mut r, k, case, results, &code.name(), expected);
+            crate::run::other_code::judge(&mut r, k, case, results, code, expected);
         }
         checks.push(r);
     }

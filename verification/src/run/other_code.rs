@@ -10,21 +10,23 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use crate::codes::is_not_expressible;
+use crate::codes::{is_not_expressible, Code};
 use crate::definition::case::{Case, CheckFile, MeasureFile, RefKind};
 use crate::definition::check::{CheckResult, Status};
 use crate::definition::run_data::JobResult;
 
-/// Rewrites `r` (check `k` of `case`, evaluated on `code`'s `results`) by the rules above;
+/// Rewrites `r` (check `k` of `case`, evaluated on the code `on`'s `results`) by the rules above;
 /// `expected`: the code's known failures, `suite/case/check` -> reason.
 pub fn judge(
     r: &mut CheckResult,
     k: &CheckFile,
     case: &Case,
     results: &BTreeMap<String, JobResult>,
-    code: &str,
+    on: &Code,
     expected: &BTreeMap<String, String>,
 ) {
+    let name = on.name();
+    let code = name.as_str();
     r.known_failure = expected
         .get(&format!("{}/{}/{}", case.suite, case.name, k.id))
         .cloned();
@@ -38,8 +40,8 @@ pub fn judge(
     let mut read = Vec::new();
     scenes_read(&k.measure.value, case.default_scene(), results, &mut read);
     let builtin = read.iter().find_map(|name| {
-        let s = case.file.scenes.get(name)?;
-        (s.value.builtin.is_some() && !solved_by(results.get(name), code)).then(|| {
+        let b = case.file.scenes.get(name)?.value.builtin.as_deref()?;
+        (!crate::run::builtins::runs_on(on, b)).then(|| {
             format!("not expressible: measures impact's own computation (builtin {name}), not a run of {code}")
         })
     });
@@ -58,21 +60,6 @@ pub fn judge(
     } else if r.not_produced {
         let why = format!("not produced by {code}: {}", r.message);
         not_expressible(r, why);
-    }
-}
-
-/// Whether `result` is a builtin's problem that `code` solved (`crate::codes::problem`), or a
-/// refusal of it: either is the code's own answer, not impact's computation.
-fn solved_by(result: Option<&JobResult>, code: &str) -> bool {
-    match result {
-        Some(Ok(d)) => {
-            d.info
-                .get(crate::codes::adapter::PROBLEM_SOLVED_BY)
-                .map(String::as_str)
-                == Some(code)
-        }
-        Some(Err(e)) => is_not_expressible(e) || e.starts_with(code),
-        None => false,
     }
 }
 

@@ -215,12 +215,10 @@ pub fn plan_for<'a>(
                     // Another code runs the scenes and, through its adapter, the builtins
                     // with a problem form; the harness the builtins its references need.
                     let needed = crate::run::other_code::referenced_builtins(case);
-                    let adapter = matches!(code, Code::Adapter(_));
                     js.retain(|name, job| match job {
                         Job::Scene { .. } => true,
                         Job::Builtin { name: b, .. } => {
-                            needed.contains(name)
-                                || (adapter && crate::run::builtins::problem_form(b).is_some())
+                            needed.contains(name) || crate::run::builtins::runs_on(&code, b)
                         }
                     });
                 }

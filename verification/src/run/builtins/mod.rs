@@ -6,9 +6,8 @@
 //! problem form ([`ProblemForm`]) runs on another code too: its problem solved by the code's
 //! adapter, its metrics from the code's fields.
 
-use crate::codes::adapter::PROBLEM_SOLVED_BY;
 use crate::codes::problem::{Fields, Problem};
-use crate::codes::Adapter;
+use crate::codes::{Adapter, Code};
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::Params;
 use crate::run::code_verification::{axisymmetric_problems, column_impact, macneal_harder};
@@ -87,6 +86,12 @@ pub fn problem_form(name: &str) -> Option<&'static ProblemForm> {
     PROBLEMS.iter().find(|(n, _)| *n == name).map(|(_, f)| f)
 }
 
+/// Whether `code` computes builtin `name` (through its adapter, [`run_on`]): an adapter does
+/// for a builtin with a problem form; otherwise the builtin is `impact`'s own computation.
+pub fn runs_on(code: &Code, name: &str) -> bool {
+    matches!(code, Code::Adapter(_)) && problem_form(name).is_some()
+}
+
 /// Builtin `name` computed by another code's `adapter`, evaluated as the builtin evaluates
 /// its own run (`None` when it has no problem form: it runs in-process). The run keeps the
 /// adapter's record (of the first problem) and the files of every problem (named by the
@@ -100,8 +105,6 @@ pub fn run_on(adapter: &Adapter, name: &str, p: &Params) -> Option<Result<RunDat
             let code_run = adapter.run(&scene(p)?)?;
             let mut run = evaluate(p, &code_run)?;
             (run.info, run.files) = (code_run.info, code_run.files);
-            run.info
-                .insert(PROBLEM_SOLVED_BY.into(), adapter.name.clone());
             Ok(run)
         })(),
     };

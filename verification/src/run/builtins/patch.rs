@@ -13,7 +13,7 @@ use impact_solver::model::AnyFormulation;
 use impact_solver::scene::{ElementKind, DEFAULT_HOURGLASS};
 use impact_solver::with_formulation;
 
-use crate::codes::problem::{Fields, Problem};
+use crate::codes::problem::{by_node, Fields, Problem};
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::{element_kind, param_str, Params};
 use crate::run::code_verification::driver::distorted_patch;
@@ -111,12 +111,7 @@ fn patch_problem(p: &Params) -> Result<Problem, String> {
     element_kind(element)?;
     let (youngs_modulus, poisson_ratio, _, width_m) = MATERIAL;
     let mesh = distorted_patch();
-    let prescribed_m = (mesh.coords.iter().enumerate())
-        .flat_map(|(n, &x)| {
-            let u = field(x);
-            [(n, 0, u[0]), (n, 1, u[1])]
-        })
-        .collect();
+    let prescribed_m = by_node(mesh.coords.iter().flat_map(|&x| field(x)).enumerate());
     Ok(Problem::plane_strain(
         element,
         width_m,

@@ -15,7 +15,7 @@ use super::axisymmetric::{
 };
 use super::driver::distorted_patch;
 use super::space_time::element;
-use crate::codes::problem::{Fields, Problem};
+use crate::codes::problem::{by_node, Fields, Problem};
 use crate::definition::run_data::RunData;
 
 type Params = BTreeMap<String, Value>;
@@ -27,11 +27,6 @@ const PATCH_AXES: [(&str, f64); 2] = [("patch", 0.03), ("patch-on-axis", 0.02)];
 /// Lame's meshes: elements through the wall.
 const LAME_NR: [usize; 4] = [4, 8, 16, 32];
 
-/// `(node, dof, value)` of a map from dof to value.
-fn held(dofs: &BTreeMap<usize, f64>) -> Vec<(usize, usize, f64)> {
-    dofs.iter().map(|(&d, &v)| (d / 2, d % 2, v)).collect()
-}
-
 /// The problems, labelled, in the order [`from_fields`] reads them.
 pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
     let kind = element(p)?.name();
@@ -39,7 +34,7 @@ pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
     let patch = distorted_patch();
     for (label, axis) in PATCH_AXES {
         let u = patch_field(&patch, axis);
-        let all = (0..u.len()).map(|d| (d / 2, d % 2, u[d])).collect();
+        let all = by_node(u.into_iter().enumerate());
         out.push((
             label,
             Problem::about_axis(kind, ELASTIC, (&patch, axis), all, Vec::new()),
@@ -50,7 +45,7 @@ pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
         kind,
         ELASTIC,
         (&disk.mesh, DISK.0),
-        held(&prescribed),
+        by_node(prescribed),
         Vec::new(),
     );
     out.push(("expansion", disk_problem));
@@ -59,12 +54,12 @@ pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
         .zip(["lame-4", "lame-8", "lame-16", "lame-32"])
     {
         let (wall, prescribed, loads) = lame_setup(nr)?;
-        let loads = loads.into_iter().map(|(d, v)| (d / 2, d % 2, v)).collect();
+        let loads = by_node(loads);
         let problem = Problem::about_axis(
             kind,
             ELASTIC,
             (&wall.mesh, LAME.1),
-            held(&prescribed),
+            by_node(prescribed),
             loads,
         );
         out.push((label, problem));

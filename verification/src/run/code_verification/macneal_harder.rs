@@ -23,7 +23,7 @@ use impact_solver::stiffness::LinearKernel;
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 
-use crate::codes::problem::{Fields, Problem};
+use crate::codes::problem::{by_node, Fields, Problem};
 use crate::definition::run_data::RunData;
 
 /// E (Pa), nu and the out-of-plane thickness (m) of the benchmark.
@@ -227,19 +227,15 @@ pub fn problems(p: &BTreeMap<String, Value>) -> Result<Vec<(&'static str, Proble
     let kind = super::space_time::element(p)?;
     let mesh = patch_mesh();
     let (exact, supports, loads) = field_and_test_b(&mesh);
-    let held = |dofs: &BTreeMap<usize, f64>| -> Vec<(usize, usize, f64)> {
-        dofs.iter().map(|(&d, &v)| (d / 2, d % 2, v)).collect()
-    };
-    let corners: BTreeMap<usize, f64> = (0..8).map(|d| (d, exact[d])).collect();
+    let corners = (0..8).map(|d| (d, exact[d]));
     let free_loads = (0..loads.len())
         .filter(|d| !supports.contains_key(d) && loads[*d] != 0.0)
-        .map(|d| (d / 2, d % 2, loads[d]))
-        .collect();
+        .map(|d| (d, loads[d]));
     let problem =
         |held, loads| Problem::plane_strain(kind.name(), THICKNESS, (E, NU), &mesh, held, loads);
     Ok(vec![
-        ("a", problem(held(&corners), Vec::new())),
-        ("b", problem(held(&supports), free_loads)),
+        ("a", problem(by_node(corners), Vec::new())),
+        ("b", problem(by_node(supports.clone()), by_node(free_loads))),
     ])
 }
 
