@@ -1,9 +1,13 @@
 """A builtin's boundary-value problem (adapters/README.md, "Problems"): `problem.json` -> a
-static ccx deck (`job.inp`) -> `fields.json`. Linear elastic, small strain, plane strain
-(`CPE4`/`CPE4R`) or axisymmetric (`CAX4`/`CAX4R`, nodes at `(r, z)`, forces the whole ring's): every
-prescribed displacement (`*BOUNDARY`) and load (`*CLOAD`) applied in one `*STATIC` step, then each node's displacement and
-internal force (ccx's `RF`: the reaction at a held dof, the residual at a free one) and the
-stress at every integration point. ccx expands a `CPE4` into a one-layer `C3D8` with 8 points
+static ccx deck (`job.inp`) -> `fields.json`. Small strain, plane strain (`CPE4`/`CPE4R`) or
+axisymmetric (`CAX4`/`CAX4R`, nodes at `(r, z)`, forces the whole ring's), linear elastic or
+von Mises with linear isotropic hardening (`*PLASTIC`, two points of the flow curve). A
+`static` problem: every prescribed displacement (`*BOUNDARY`) and load (`*CLOAD`) applied in one
+`*STATIC` step; a `static path`: the same scaled by each load factor in turn, one fixed
+increment per factor (`*STATIC, DIRECT` with the factors as an `*AMPLITUDE`). At each, each
+node's displacement and internal force (ccx's `RF`: the reaction at a held dof, the residual at
+a free one), the stress at every integration point and, with plasticity, its equivalent plastic
+strain (`PEEQ`). ccx expands a `CPE4` into a one-layer `C3D8` with 8 points
 (`CPE4R`: 1), a `CAX4` into a 2-degree wedge (its radial displacement and forces below); the
 stresses are those points'. Lengths m, forces N (the section's whole width; none about the
 axis), stresses Pa (about the axis `s_rr, s_zz, s_tt, s_rz`, as ccx prints them).
@@ -42,8 +46,9 @@ def load(path):
 
 def check_expressible(p):
     """NotExpressible for a problem this adapter does not write."""
-    if p.get("problem") != "static":
-        raise NotExpressible(f"problem {p.get('problem')!r}", "only 'static' problems are written")
+    if p.get("problem") not in ("static", "static path"):
+        raise NotExpressible(f"problem {p.get('problem')!r}",
+                             "only 'static' and 'static path' problems are written")
     if p.get("geometry") not in GEOMETRY:
         raise NotExpressible(f"geometry {p.get('geometry')!r}",
                              f"one of {', '.join(GEOMETRY)}")
@@ -51,46 +56,91 @@ def check_expressible(p):
         raise NotExpressible(f"element {p.get('element')!r}", f"one of {', '.join(ELEMENTS)}")
 
 
+def material_lines(m):
+    """*MATERIAL M: elastic, and the linear flow curve `sigma_y + H eps_p` (two points, at
+    eps_p = 0 and 1; `H = E E_t / (E - E_t)`) when the problem has plasticity."""
+    e = m["youngs_modulus_Pa"]
+    lines = ["*MATERIAL, NAME=M", "*ELASTIC", f"{deck.num(e)}, {deck.num(m['poisson_ratio'])}"]
+    if m.get("plasticity"):
+        sy, et = m["plasticity"]["yield_stress_Pa"], m["plasticity"]["tangent_modulus_Pa"]
+        h = e * et / (e - et)
+        lines += ["*PLASTIC", f"{deck.num(sy)}, 0.", f"{deck.num(sy + h)}, 1."]
+    return lines
+
+
+def step_lines(p):
+    """The *STEP: one *STATIC increment, or a fixed increment per load factor of a path."""
+    factors = p.get("load_factors")
+    if factors is None:
+        return ["*STEP", "*STATIC", "*BOUNDARY"], ""
+    n = len(factors)
+    amplitude = ["*AMPLITUDE, NAME=PATH", "0., 0."]
+    amplitude += [f"{deck.num((k + 1) / n)}, {deck.num(f)}" for k, f in enumerate(factors)]
+    return amplitude + [f"*STEP, INC={n + 1}", "*STATIC, DIRECT", f"{deck.num(1 / n)}, 1.",
+                        "*BOUNDARY, AMPLITUDE=PATH"], ", AMPLITUDE=PATH"
+
+
 def deck_lines(p):
     """The deck's lines and (ccx element type, substitutions)."""
     ccx_type, sub = deck.ELEMENT[(GEOMETRY[p["geometry"]], p["element"])]
-    m = p["material"]
     lines = ["*NODE"]
     lines += [f"{i + 1}, {deck.num(x)}, {deck.num(y)}, 0." for i, (x, y) in enumerate(p["nodes_m"])]
     lines.append(f"*ELEMENT, TYPE={ccx_type}, ELSET=EALL")
     lines += [f"{k + 1}, " + ", ".join(str(n + 1) for n in e) for k, e in enumerate(p["elements"])]
     lines += ["*NSET, NSET=NALL"] + deck.lines_of(list(range(1, len(p["nodes_m"]) + 1)))
-    lines += ["*MATERIAL, NAME=M", "*ELASTIC",
-              f"{deck.num(m['youngs_modulus_Pa'])}, {deck.num(m['poisson_ratio'])}",
-              "*SOLID SECTION, ELSET=EALL, MATERIAL=M",
-              deck.num(p["width_m"]) if p["geometry"] == "plane strain" else "",
-              "*STEP", "*STATIC", "*BOUNDARY"]
+    lines += material_lines(p["material"])
+    lines += ["*SOLID SECTION, ELSET=EALL, MATERIAL=M",
+              deck.num(p["width_m"]) if p["geometry"] == "plane strain" else ""]
+    step, amplitude = step_lines(p)
+    lines += step
     lines += [f"{n + 1}, {d + 1}, {d + 1}, {deck.num(v)}" for n, d, v in p["prescribed_m"]]
     if p.get("loads_N"):
-        lines += ["*CLOAD"] + [f"{n + 1}, {d + 1}, {deck.num(v)}" for n, d, v in p["loads_N"]]
-    lines += ["*NODE PRINT, NSET=NALL", "U, RF", "*EL PRINT, ELSET=EALL", "S", "*END STEP"]
+        lines += [f"*CLOAD{amplitude}"]
+        lines += [f"{n + 1}, {d + 1}, {deck.num(v)}" for n, d, v in p["loads_N"]]
+    plastic = ", PEEQ" if p["material"].get("plasticity") else ""
+    lines += ["*NODE PRINT, NSET=NALL", "U, RF", "*EL PRINT, ELSET=EALL", f"S{plastic}",
+              "*END STEP"]
     return lines, (ccx_type, [sub] if sub else [])
 
 
-def fields(blocks, p):
-    """fields.json's arrays from job.dat's blocks."""
+def by_point(rows, n_elements, width):
+    """Per element, its points' values (`width` numbers after element and point) in point order."""
+    out = [[] for _ in range(n_elements)]
+    for r in sorted(rows, key=lambda r: (r[0], r[1])):
+        out[int(r[0]) - 1].append(r[2:2 + width] if width > 1 else r[2])
+    return out
+
+
+def fields_at(blocks, p, k):
+    """fields.json's arrays from job.dat's k-th output (of each kind)."""
     n_nodes, n_elements = len(p["nodes_m"]), len(p["elements"])
-    u = results.nodal(results.series(blocks, "U", "NALL")[-1][1])
-    f = results.nodal(results.series(blocks, "F", "NALL")[-1][1])
-    stresses = [[] for _ in range(n_elements)]
-    for r in sorted(results.series(blocks, "S", "EALL")[-1][1], key=lambda r: (r[0], r[1])):
-        stresses[int(r[0]) - 1].append(r[2:6])
-    missing = [k + 1 for k in range(n_elements) if not stresses[k]]
+    u = results.nodal(results.series(blocks, "U", "NALL")[k][1])
+    f = results.nodal(results.series(blocks, "F", "NALL")[k][1])
+    stresses = by_point(results.series(blocks, "S", "EALL")[k][1], n_elements, 4)
+    missing = [e + 1 for e in range(n_elements) if not stresses[e]]
     if missing or len(u) < n_nodes or len(f) < n_nodes:
         raise results.DatError(f"job.dat is short: {len(u)} displacements, {len(f)} forces for "
                                f"{n_nodes} nodes, no stress for elements {missing}")
+    out = {"displacements_m": [u[i + 1][:2] for i in range(n_nodes)],
+           "nodal_forces_N": [f[i + 1][:2] for i in range(n_nodes)],
+           "point_stresses_Pa": stresses}
+    if p["material"].get("plasticity"):
+        out["point_eqps"] = by_point(results.series(blocks, "PEEQ", "EALL")[k][1], n_elements, 1)
     if p["geometry"] == "axisymmetric":
         c = math.cos(HALF_WEDGE)
-        return {"displacements_m": [[u[i + 1][0] / c, u[i + 1][1]] for i in range(n_nodes)],
-                "nodal_forces_N": None, "point_stresses_Pa": stresses}
-    return {"displacements_m": [u[i + 1][:2] for i in range(n_nodes)],
-            "nodal_forces_N": [f[i + 1][:2] for i in range(n_nodes)],
-            "point_stresses_Pa": stresses}
+        out["displacements_m"] = [[ur / c, uz] for ur, uz in out["displacements_m"]]
+        out["nodal_forces_N"] = None
+    return out
+
+
+def fields(blocks, p):
+    """fields.json: the one output of a static problem, or `{"steps": [...]}` of a path's."""
+    if p.get("load_factors") is None:
+        return fields_at(blocks, p, -1)
+    n, got = len(p["load_factors"]), len(results.series(blocks, "S", "EALL"))
+    if got != n:
+        raise results.DatError(f"job.dat has {got} outputs for the path's {n} load factors")
+    return {"steps": [fields_at(blocks, p, k) for k in range(n)]}
 
 
 def solve(problem_json, out_dir, version):
@@ -104,6 +154,7 @@ def solve(problem_json, out_dir, version):
     out = fields(results.parse(os.path.join(out_dir, "job.dat")), p)
     adapter = {"code": "calculix", "version": version, "input": ["job.inp"],
                "wall_time_s": wall, "cpu_time_s": cpu, "substitutions": subs,
-               "n_elements": len(p["elements"]), "n_steps": 1, "ccx_element": ccx_type}
+               "n_elements": len(p["elements"]),
+               "n_steps": len(p.get("load_factors") or [1]), "ccx_element": ccx_type}
     contract.write_all(out_dir, {"fields.json": json.dumps(out, indent=1) + "\n",
                                  "adapter.json": json.dumps(adapter, indent=2) + "\n"})

@@ -1,7 +1,9 @@
 """Read ccx's job.dat: the blocks of *NODE PRINT / *EL PRINT, by kind, set and time.
 
 A block starts with a header such as ' displacements (vx,vy,vz) for set NMID and time  0.1E-05'
-or ' total internal energy for set EALL and time ...', then rows of numbers. A *CONTACT PRINT
+or ' total internal energy for set EALL and time ...' (after some kinds ccx leaves out the space
+before "for set": ' equivalent plastic strain (elem, integ.pnt.,pe)for set EALL ...'), then rows
+of numbers. A *CONTACT PRINT
 CF block (' statistics for slave set S, master set M and time ...') is kept under ('CF', S):
 its rows are the numeric lines between its captions, the first the total surface force on the
 slave surface and its moment about the origin (fx, fy, fz, mx, my, mz).
@@ -9,7 +11,7 @@ slave surface and its moment about the origin (fx, fy, fz, mx, my, mz).
 
 import re
 
-HEADER = re.compile(r"^\s*(?P<what>.+?)\s+for set\s+(?P<set>\S+)\s+and time\s+(?P<t>\S+)\s*$")
+HEADER = re.compile(r"^\s*(?P<what>.+?)\s*for set\s+(?P<set>\S+)\s+and time\s+(?P<t>\S+)\s*$")
 CONTACT = re.compile(r"^\s*statistics for slave set\s+(?P<set>[^,\s]+),\s*master set\s+\S+"
                      r"\s+and time\s+(?P<t>\S+)\s*$")
 
@@ -21,6 +23,7 @@ KINDS = {  # header text -> short name
     "total force (fx,fy,fz)": "RF",
     "forces (fx,fy,fz)": "F",  # *NODE PRINT RF without TOTALS: each node's
     "velocities (vx,vy,vz)": "V",
+    "equivalent plastic strain (elem, integ.pnt.,pe)": "PEEQ",  # no space before "for set"
 }
 
 

@@ -139,7 +139,7 @@ impl Adapter {
         &self,
         builtin: &str,
         problem: &Problem,
-    ) -> Result<(Fields, RunData), String> {
+    ) -> Result<(Vec<Fields>, RunData), String> {
         let scratch = super::process::Scratch::new(&self.name)?;
         let dir = &scratch.0;
         let input = dir.join("problem.json");

@@ -10,7 +10,9 @@ use crate::codes::problem::{Fields, Problem};
 use crate::codes::{Adapter, Code};
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::Params;
-use crate::run::code_verification::{axisymmetric_problems, column_impact, macneal_harder};
+use crate::run::code_verification::{
+    axisymmetric_problems, column_impact, macneal_harder, plastic_path_problem,
+};
 use impact_solver::Scene;
 
 mod beam_bending;
@@ -36,7 +38,8 @@ const REGISTRY: [(&str, Builtin); 6] = [
 /// scene (the adapter's scene contract), with its metrics from what the code gives back.
 pub enum ProblemForm {
     /// Static problems, each with a label that names it (`a`, `b`; a single problem's label is
-    /// empty), and the metrics from the code's fields, one per problem in the same order.
+    /// empty), and the metrics from the code's fields, one per problem in the same order (a
+    /// path problem's, one per load factor, in its place).
     Problems {
         problems: fn(&Params) -> Result<Vec<(&'static str, Problem)>, String>,
         evaluate: fn(&Params, &[Fields]) -> Result<RunData, String>,
@@ -50,7 +53,7 @@ pub enum ProblemForm {
 }
 
 /// The builtins with a problem form, by name.
-const PROBLEMS: [(&str, ProblemForm); 4] = [
+const PROBLEMS: [(&str, ProblemForm); 5] = [
     (
         "patch",
         ProblemForm::Problems {
@@ -70,6 +73,13 @@ const PROBLEMS: [(&str, ProblemForm); 4] = [
         ProblemForm::Problems {
             problems: macneal_harder::problems,
             evaluate: macneal_harder::from_fields,
+        },
+    ),
+    (
+        "plastic-strain-path",
+        ProblemForm::Problems {
+            problems: plastic_path_problem::problems,
+            evaluate: plastic_path_problem::from_fields,
         },
     ),
     (
@@ -126,7 +136,7 @@ fn solve_problems(
     let mut run = RunData::default();
     for (k, (label, problem)) in problems.iter().enumerate() {
         let (f, r) = adapter.run_problem(&format!("{name} {label}"), problem)?;
-        fields.push(f);
+        fields.extend(f);
         if k == 0 {
             run.info = r.info;
         }

@@ -235,6 +235,7 @@ mod tests {
         let u: Vec<f64> = mesh.coords.iter().flat_map(|&x| field(x)).collect();
         let (f, _) = with_formulation!(&form, x => assemble(x, &elastic, &u, None));
         Fields {
+            point_eqps: None,
             displacements: mesh.coords.iter().map(|&x| field(x)).collect(),
             nodal_forces: Some(f.chunks(2).map(|c| [c[0], c[1]]).collect()),
             point_stresses: with_formulation!(&form, x => point_stresses(x, &elastic, &u)),

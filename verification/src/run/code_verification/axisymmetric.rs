@@ -418,6 +418,7 @@ mod tests {
         }
         let radial = |v: &[f64]| v.chunks(2).map(|c| [-c[0], c[1]]).collect();
         crate::codes::problem::Fields {
+            point_eqps: None,
             displacements: radial(u),
             nodal_forces: Some(radial(&forces)),
             point_stresses: stresses,

@@ -303,6 +303,7 @@ mod tests {
         let u = solve(&k, &loads, &held).unwrap();
         let forces = &k * DVector::from_column_slice(&u);
         Fields {
+            point_eqps: None,
             displacements: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
             nodal_forces: Some(forces.as_slice().chunks(2).map(|c| [c[0], c[1]]).collect()),
             point_stresses: (0..f.n_elements())

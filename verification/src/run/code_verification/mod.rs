@@ -19,6 +19,7 @@ pub mod membrane;
 pub mod orders;
 pub mod plastic_material;
 pub mod plastic_path;
+pub mod plastic_path_problem;
 pub mod probe_point;
 pub mod rate_path;
 pub mod rigid_target;

@@ -37,6 +37,7 @@ use super::driver::mapped_mesh;
 use super::orders::{largest_step, pair_orders};
 use super::plastic_material::plastic_material;
 use super::space_time::element;
+use crate::codes::problem::Fields;
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::{param, param_levels};
 
@@ -44,19 +45,19 @@ type Params = BTreeMap<String, Value>;
 
 /// The material and the path, SI units.
 #[derive(Debug, Clone, Copy)]
-struct Path {
-    youngs_modulus: f64,
-    poisson_ratio: f64,
-    yield_stress: f64,
-    tangent_modulus: f64,
+pub(super) struct Path {
+    pub(super) youngs_modulus: f64,
+    pub(super) poisson_ratio: f64,
+    pub(super) yield_stress: f64,
+    pub(super) tangent_modulus: f64,
     density: f64,
     /// Largest axial strain (-)
-    eps_max: f64,
+    pub(super) eps_max: f64,
     /// Duration of the load-unload cycle, s
-    period: f64,
+    pub(super) period: f64,
     /// The solver's material: yield stress and tangent modulus, Pa (the closed form's unless
     /// a negative control sets `model_yield_stress` / `model_tangent_modulus`).
-    model: (f64, f64),
+    pub(super) model: (f64, f64),
 }
 
 impl Path {
@@ -72,10 +73,10 @@ impl Path {
         e * et / (e - et)
     }
     /// Yield strain of uniaxial strain, `sigma_y / (2 mu)`.
-    fn yield_strain(&self) -> f64 {
+    pub(super) fn yield_strain(&self) -> f64 {
         self.yield_stress / (2.0 * self.lame().1)
     }
-    fn strain(&self, t: f64) -> f64 {
+    pub(super) fn strain(&self, t: f64) -> f64 {
         self.eps_max * (std::f64::consts::PI * t / self.period).sin()
     }
     fn strain_acceleration(&self, t: f64) -> f64 {
@@ -87,7 +88,7 @@ impl Path {
         w * self.eps_max * (w * t).cos()
     }
     /// Closed form at time t: (stress [xx, yy, zz, xy], equivalent plastic strain).
-    fn exact(&self, t: f64) -> (Stress, f64) {
+    pub(super) fn exact(&self, t: f64) -> (Stress, f64) {
         let (lambda, mu) = self.lame();
         let h = self.plastic_modulus();
         let (eps, ey) = (self.strain(t), self.yield_strain());
@@ -133,12 +134,51 @@ impl Path {
     }
 }
 
-/// One run: per step the time, the prescribed strain, the largest stress error over the
-/// points (/ sigma_y), the largest eqps error (/ eps_y), and point 0 of element 0's
-/// sigma_xx and eqps.
+/// One run: the fields at every step (`t = n dt`, `n = 0 .. steps`), as another code writes
+/// them (`crate::codes::problem`), and the stable step, s.
 struct Run {
-    rows: Vec<[f64; 6]>,
+    fields: Vec<Fields>,
     dt_critical: f64,
+}
+
+impl Run {
+    /// The rows of its steps ([`row`]).
+    fn rows(&self, path: &Path) -> Vec<[f64; 6]> {
+        let dt = path.period / (self.fields.len() - 1) as f64;
+        let rows = self.fields.iter().enumerate();
+        rows.map(|(n, f)| row(path, n as f64 * dt, f)).collect()
+    }
+}
+
+/// The model's fields at displacements `u` (m) with internal forces `f_int` (N).
+fn step_fields<F: Formulation>(
+    model: &PlateModel<F, VonMises>,
+    u: &[f64],
+    f_int: &[f64],
+) -> Fields {
+    let pairs = |v: &[f64]| v.chunks(2).map(|c| [c[0], c[1]]).collect();
+    let elements = 0..model.formulation.n_elements();
+    let points = |e: usize| (0..F::POINTS).map(move |p| (e, p));
+    Fields {
+        displacements: pairs(u),
+        nodal_forces: Some(pairs(f_int)),
+        point_stresses: (elements.clone())
+            .map(|e| {
+                points(e)
+                    .map(|(e, p)| model.point_stress(e, p, u))
+                    .collect()
+            })
+            .collect(),
+        point_eqps: Some(
+            elements
+                .map(|e| {
+                    (points(e))
+                        .map(|(e, p)| model.material.equivalent_plastic_strain(&model.state(e, p)))
+                        .collect()
+                })
+                .collect(),
+        ),
+    }
 }
 
 fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> Run {
@@ -158,26 +198,11 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
         })
         .collect();
     let mut f_int = vec![0.0; ndof];
-    let (sy, ey) = (path.yield_stress, path.yield_strain());
-    let mut rows = Vec::with_capacity(steps + 1);
+    let mut fields = Vec::with_capacity(steps + 1);
     for n in 0..=steps {
         let t = n as f64 * dt;
         model.internal_forces(&u, &mut f_int);
-        let (exact, kappa) = path.exact(t);
-        let (mut e_s, mut e_k) = (0.0f64, 0.0f64);
-        for e in 0..model.formulation.n_elements() {
-            for p in 0..F::POINTS {
-                let s = model.point_stress(e, p, &u);
-                let k = model.material.equivalent_plastic_strain(&model.state(e, p));
-                for c in 0..4 {
-                    e_s = e_s.max((s[c] - exact[c]).abs() / sy);
-                }
-                e_k = e_k.max((k - kappa).abs() / ey);
-            }
-        }
-        let s0 = model.point_stress(0, 0, &u)[0];
-        let k0 = model.material.equivalent_plastic_strain(&model.state(0, 0));
-        rows.push([t, path.strain(t), e_s, e_k, s0, k0]);
+        fields.push(step_fields(&model, &u, &f_int));
         if n == steps {
             break;
         }
@@ -198,9 +223,13 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
             u[d] += dt * v[d];
         }
     }
-    Run { rows, dt_critical }
+    Run {
+        fields,
+        dt_critical,
+    }
 }
 
+/// The path marched in `steps` steps on the case's element.
 fn run(path: &Path, mesh: &PlateMesh, p: &Params, steps: usize) -> Result<Run, String> {
     let kind = element(p)?;
     let elastic = Elastic::new(path.youngs_modulus, path.poisson_ratio);
@@ -215,6 +244,25 @@ fn run(path: &Path, mesh: &PlateMesh, p: &Params, steps: usize) -> Result<Run, S
         ));
     }
     Ok(r)
+}
+
+/// The row of the step at time `t` (s) from its `fields`: the time, the prescribed strain,
+/// the largest stress error over the points and components (/ sigma_y), the largest eqps
+/// error (/ eps_y; 0 without eqps), and the first point of the first element's s_xx (Pa) and
+/// eqps (NaN without).
+pub(super) fn row(path: &Path, t: f64, fields: &Fields) -> [f64; 6] {
+    let (sy, ey) = (path.yield_stress, path.yield_strain());
+    let (exact, kappa) = path.exact(t);
+    let stress_error = (fields.point_stresses.iter().flatten())
+        .flat_map(|s| (0..4).map(move |c| (s[c] - exact[c]).abs() / sy))
+        .fold(0.0f64, f64::max);
+    let eqps = fields.point_eqps.as_ref();
+    let eqps_error = (eqps.into_iter().flatten().flatten())
+        .map(|k| (k - kappa).abs() / ey)
+        .fold(0.0f64, f64::max);
+    let s0 = fields.point_stresses[0][0][0];
+    let k0 = eqps.map_or(f64::NAN, |e| e[0][0]);
+    [t, path.strain(t), stress_error, eqps_error, s0, k0]
 }
 
 /// First row (loading half) with plastic strain at point 0, its strain (-).
@@ -236,7 +284,8 @@ fn loading_slope(rows: &[[f64; 6]], ey: f64) -> f64 {
     (b[4] - a[4]) / (b[1] - a[1])
 }
 
-pub fn plastic_strain_path(p: &Params) -> Result<RunData, String> {
+/// The case's path, its mesh (a distorted `n x n` block) and the step counts of its levels.
+pub(super) fn setup(p: &Params) -> Result<(Path, PlateMesh, Vec<usize>), String> {
     let mat = plastic_material(p)?;
     let mut path = Path {
         youngs_modulus: mat.youngs_modulus,
@@ -260,52 +309,68 @@ pub fn plastic_strain_path(p: &Params) -> Result<RunData, String> {
     if levels.len() < 3 || levels.windows(2).any(|w| w[1] != 2 * w[0]) {
         return Err("param steps: at least three, each twice the previous".into());
     }
+    Ok((path, mesh, levels))
+}
+
+pub fn plastic_strain_path(p: &Params) -> Result<RunData, String> {
+    let (path, mesh, levels) = setup(p)?;
     let mut m = BTreeMap::new();
     let (mut es, mut ek) = (Vec::new(), Vec::new());
     let mut finest = None;
     for &steps in &levels {
         let r = run(&path, &mesh, p, steps)?;
-        let s = r.rows.iter().fold(0.0f64, |a, row| a.max(row[2]));
-        let k = r.rows.iter().fold(0.0f64, |a, row| a.max(row[3]));
+        let rows = r.rows(&path);
+        let s = rows.iter().fold(0.0f64, |a, row| a.max(row[2]));
+        let k = rows.iter().fold(0.0f64, |a, row| a.max(row[3]));
         m.insert(format!("stress_error_n{steps}"), s);
         m.insert(format!("eqps_error_n{steps}"), k);
         es.push(s);
         ek.push(k);
-        finest = Some(r);
+        finest = Some((r.dt_critical, rows));
     }
-    let r = finest.expect("levels");
+    let (dt_critical, rows) = finest.expect("levels");
     let orders = pair_orders(&es, 2.0);
-    m.insert("stress_error_finest".into(), es[es.len() - 1]);
-    m.insert("eqps_error_finest".into(), ek[ek.len() - 1]);
     m.insert("stress_order_finest".into(), orders[orders.len() - 1]);
     m.insert("stress_order_largest_step".into(), largest_step(&orders));
     for (k, w) in levels.windows(2).enumerate() {
         m.insert(format!("stress_order_n{}_n{}", w[0], w[1]), orders[k]);
     }
+    m.insert("dt_over_critical_finest".into(), {
+        let dt = path.period / levels[levels.len() - 1] as f64;
+        dt / dt_critical
+    });
+    Ok(path_run(&path, &rows, m))
+}
+
+/// The metrics every computation of the path gives (the finest level's errors, the yield
+/// onset, the hardening slope, the state back at zero strain) beside `m`, and the history of
+/// point 0, from `rows`: per step the time, the prescribed strain, the largest stress error over
+/// the points (/ sigma_y), the largest eqps error (/ eps_y), and point 0 of element 0's
+/// sigma_xx and eqps.
+pub(super) fn path_run(path: &Path, rows: &[[f64; 6]], mut m: BTreeMap<String, f64>) -> RunData {
+    let largest = |c: usize| rows.iter().fold(0.0f64, |a, row| a.max(row[c]));
+    m.insert("stress_error_finest".into(), largest(2));
+    m.insert("eqps_error_finest".into(), largest(3));
     let ey = path.yield_strain();
-    if let Some(on) = onset_strain(&r.rows) {
+    if let Some(on) = onset_strain(rows) {
         m.insert("yield_onset_strain".into(), on);
     }
     m.insert("yield_strain_closed_form".into(), ey);
-    m.insert("loading_slope_Pa".into(), loading_slope(&r.rows, ey));
+    m.insert("loading_slope_Pa".into(), loading_slope(rows, ey));
     let (lambda, mu) = path.lame();
     let h = path.plastic_modulus();
     m.insert(
         "loading_slope_closed_form_Pa".into(),
         lambda + 2.0 * mu - 4.0 * mu * mu / (3.0 * mu + h),
     );
-    let last = r.rows[r.rows.len() - 1];
+    let last = rows[rows.len() - 1];
     let (exact_end, kappa_end) = path.exact(path.period);
     m.insert("final_sxx_Pa".into(), last[4]);
     m.insert("final_sxx_closed_form_Pa".into(), exact_end[0]);
     m.insert("final_eqps".into(), last[5]);
     m.insert("final_eqps_closed_form".into(), kappa_end);
-    m.insert("dt_over_critical_finest".into(), {
-        let dt = path.period / levels[levels.len() - 1] as f64;
-        dt / r.dt_critical
-    });
     let mut values = Vec::new();
-    for row in &r.rows {
+    for row in rows {
         let (s, k) = path.exact(row[0]);
         values.extend([row[0], row[1], row[4], s[0], row[5], k]);
     }
@@ -321,11 +386,11 @@ pub fn plastic_strain_path(p: &Params) -> Result<RunData, String> {
         columns: columns.iter().map(|s| s.to_string()).collect(),
         values,
     };
-    Ok(RunData {
+    RunData {
         histories: BTreeMap::from([(String::new(), history)]),
         metrics: m,
         ..Default::default()
-    })
+    }
 }
 
 #[cfg(test)]
@@ -355,5 +420,35 @@ mod tests {
         let wrong_h = metrics(&[("model_tangent_modulus", 200e9 * et / (200e9 + et))]);
         let rel = wrong_h["loading_slope_Pa"] / wrong_h["loading_slope_closed_form_Pa"] - 1.0;
         assert!((-6e-3..-4e-3).contains(&rel), "{rel}");
+    }
+
+    /// The problem form's evaluation (`plastic_path_problem::from_fields`) on `impact`'s own
+    /// fields at each step of the finest level, written as another code writes them, gives the
+    /// builtin's finest-level metrics bit for bit: the two read one definition.
+    #[test]
+    fn own_fields_give_the_builtin_metrics() {
+        for element in ["q4-sri", "q4-1pt"] {
+            let mut p = Params::new();
+            p.insert("steps".into(), serde_json::json!([100, 200, 400]));
+            p.insert("element".into(), Value::from(element));
+            let builtin = plastic_strain_path(&p).unwrap().metrics;
+            let (path, mesh, _) = setup(&p).unwrap();
+            let own = run(&path, &mesh, &p, 400).unwrap();
+            let from_fields = super::super::plastic_path_problem::from_fields;
+            let metrics = from_fields(&p, &own.fields[1..]).unwrap().metrics;
+            assert_eq!(metrics.len(), 10, "{metrics:?}");
+            for (k, v) in &metrics {
+                assert_eq!(
+                    v.to_bits(),
+                    builtin[k].to_bits(),
+                    "{element} {k}: {v} {}",
+                    builtin[k]
+                );
+            }
+            let mut off = own.fields[1..].to_vec();
+            off[200].point_stresses[3][0][1] += 2.5e5; // 1e-3 sigma_y, at one point and step
+            let moved = from_fields(&p, &off).unwrap().metrics["stress_error_finest"];
+            assert!((moved - 1e-3).abs() < 2e-5, "{moved}");
+        }
     }
 }
