@@ -19,6 +19,7 @@ import os
 
 import contract
 import deck
+import indenter
 import results
 import runner
 from scene import NotExpressible
@@ -46,9 +47,9 @@ def load(path):
 
 def check_expressible(p):
     """NotExpressible for a problem this adapter does not write."""
-    if p.get("problem") not in ("static", "static path"):
+    if p.get("problem") not in ("static", "static path", "static contact"):
         raise NotExpressible(f"problem {p.get('problem')!r}",
-                             "only 'static' and 'static path' problems are written")
+                             "only 'static', 'static path' and 'static contact' problems are written")
     if p.get("geometry") not in GEOMETRY:
         raise NotExpressible(f"geometry {p.get('geometry')!r}",
                              f"one of {', '.join(GEOMETRY)}")
@@ -82,6 +83,8 @@ def step_lines(p):
 
 def deck_lines(p):
     """The deck's lines and (ccx element type, substitutions)."""
+    if p["problem"] == "static contact":
+        return indenter.deck_lines(p)
     ccx_type, sub = deck.ELEMENT[(GEOMETRY[p["geometry"]], p["element"])]
     lines = ["*NODE"]
     lines += [f"{i + 1}, {deck.num(x)}, {deck.num(y)}, 0." for i, (x, y) in enumerate(p["nodes_m"])]
@@ -135,6 +138,8 @@ def fields_at(blocks, p, k):
 
 def fields(blocks, p):
     """fields.json: the one output of a static problem, or `{"steps": [...]}` of a path's."""
+    if p["problem"] == "static contact":
+        return indenter.fields(blocks, p)
     if p.get("load_factors") is None:
         return fields_at(blocks, p, -1)
     n, got = len(p["load_factors"]), len(results.series(blocks, "S", "EALL"))

@@ -10,9 +10,12 @@ use serde::{Deserialize, Serialize};
 
 /// The problem kinds: [`STATIC`], every prescribed displacement and load applied at once and
 /// equilibrium solved; [`STATIC_PATH`], the same problem followed along a path of load factors
-/// (each a static equilibrium, the material's state carried from one to the next).
+/// (each a static equilibrium, the material's state carried from one to the next);
+/// [`STATIC_CONTACT`], a [`STATIC`] problem in which a rigid cylinder is also pressed into the
+/// section ([`ProblemIndenter`]).
 pub const STATIC: &str = "static";
 pub const STATIC_PATH: &str = "static path";
+pub const STATIC_CONTACT: &str = "static contact";
 /// Its geometries: a plane-strain section of a given width, or a section of a body of
 /// revolution (nodes at `(r, z)`, `r >= 0` the distance from the axis).
 pub const PLANE_STRAIN: &str = "plane strain";
@@ -50,6 +53,30 @@ pub struct Problem {
     /// written at each.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub load_factors: Option<Vec<f64>>,
+    /// [`STATIC_CONTACT`] only: the rigid cylinder pressed into the section.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub indenter: Option<ProblemIndenter>,
+}
+
+/// A rigid, frictionless cylinder, its axis out of the plane, pressed into a plane-strain
+/// section: at the start its lowest point touches the surface at `touch`; in the problem's one
+/// step it moves by `displacement`. The contact force on a node of the section is then its
+/// internal force (`nodal_forces_N` of [`Fields`]): at a free node the section's elements
+/// balance the contact alone.
+#[derive(Debug, Clone, Serialize)]
+pub struct ProblemIndenter {
+    /// Radius, m.
+    #[serde(rename = "radius_m")]
+    pub radius: f64,
+    /// The surface point (x, y) its lowest point touches at the start, m; its centre is
+    /// `radius` above.
+    #[serde(rename = "touch_m")]
+    pub touch: [f64; 2],
+    /// Its displacement (x, y), m.
+    #[serde(rename = "displacement_m")]
+    pub displacement: [f64; 2],
+    /// The section's surface nodes it may touch, in order along the surface (0-based).
+    pub surface_nodes: Vec<usize>,
 }
 
 impl Problem {
@@ -83,7 +110,15 @@ impl Problem {
             prescribed_m,
             loads_n,
             load_factors: None,
+            indenter: None,
         }
+    }
+
+    /// This problem with `indenter` pressed into it ([`STATIC_CONTACT`]).
+    pub fn pressed_by(mut self, indenter: ProblemIndenter) -> Problem {
+        self.problem = STATIC_CONTACT;
+        self.indenter = Some(indenter);
+        self
     }
 
     /// This problem followed along `load_factors` ([`STATIC_PATH`]) in a von Mises material
@@ -186,8 +221,8 @@ pub struct Fields {
     #[serde(rename = "displacements_m")]
     pub displacements: Vec<[f64; 2]>,
     /// Per node, the internal force `(f_x, f_y)`, N: the reaction at a prescribed dof, the
-    /// residual at a free one; `null` when the code cannot give it (the checks that read it
-    /// show *not produced*).
+    /// residual at a free one (under an indenter, its contact force); `null` when the code
+    /// cannot give it (the checks that read it show *not produced*).
     #[serde(rename = "nodal_forces_N", default)]
     pub nodal_forces: Option<Vec<[f64; 2]>>,
     /// Per element, per integration point (the code's own points, any number),

@@ -11,7 +11,7 @@ use crate::codes::{Adapter, Code};
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::Params;
 use crate::run::code_verification::{
-    axisymmetric_problems, column_impact, macneal_harder, plastic_path_problem,
+    axisymmetric_problems, column_impact, hertz_line_problem, macneal_harder, plastic_path_problem,
 };
 use impact_solver::Scene;
 
@@ -53,7 +53,7 @@ pub enum ProblemForm {
 }
 
 /// The builtins with a problem form, by name.
-const PROBLEMS: [(&str, ProblemForm); 5] = [
+const PROBLEMS: [(&str, ProblemForm); 6] = [
     (
         "patch",
         ProblemForm::Problems {
@@ -80,6 +80,13 @@ const PROBLEMS: [(&str, ProblemForm); 5] = [
         ProblemForm::Problems {
             problems: plastic_path_problem::problems,
             evaluate: plastic_path_problem::from_fields,
+        },
+    ),
+    (
+        "hertz-line",
+        ProblemForm::Problems {
+            problems: hertz_line_problem::problems,
+            evaluate: hertz_line_problem::from_fields,
         },
     ),
     (

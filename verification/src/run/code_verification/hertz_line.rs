@@ -30,10 +30,10 @@ use crate::run::builtin_params::param;
 type Params = BTreeMap<String, Value>;
 
 /// Width of the block out of plane, m.
-const WIDTH: f64 = 0.01;
+pub(super) const WIDTH: f64 = 0.01;
 /// Nose radius, m; impactor mass, kg, and velocity, m/s: a peak force per width near
 /// 2.2e6 N/m, a Hertz half-width of about 0.5 mm (a / R = 0.025), reached in about 120 us.
-const RADIUS: f64 = 0.02;
+pub(super) const RADIUS: f64 = 0.02;
 const MASS: f64 = 16.0;
 const VELOCITY: f64 = 0.2;
 
@@ -60,7 +60,7 @@ impl Observer for PeakFrame {
 
 /// The scene: `n` x `n` elements on the half block (`size` wide and tall, m), the solver's
 /// modulus `model_modulus`.
-fn scene(n: usize, size: f64, modulus: f64, nu: f64) -> String {
+pub(super) fn scene(n: usize, size: f64, modulus: f64, nu: f64) -> String {
     format!(
         "plate: {{length: {length}, width: {WIDTH}, thickness: {size}}}\n\
          material: {{density: 7850.0, youngs_modulus: {modulus}, poisson_ratio: {nu}}}\n\
@@ -72,10 +72,10 @@ fn scene(n: usize, size: f64, modulus: f64, nu: f64) -> String {
     )
 }
 
-/// The top-surface nodes of the frame (x from the axis, m; the nose's downward force, N) and
-/// their tributary lengths, m: node `i` of the top row is `n (n + 1) + i`.
-fn top_profile(frame: &FieldFrame, n: usize, size: f64) -> Vec<(f64, f64, f64)> {
-    let forces = frame.contact_force.as_deref().unwrap_or(&[]);
+/// The top-surface nodes (x from the axis, m; the nose's downward force, N, from the contact
+/// `forces` on the nodes) and their tributary lengths, m: node `i` of the top row is
+/// `n (n + 1) + i`.
+fn top_profile(forces: &[[f64; 2]], n: usize, size: f64) -> Vec<(f64, f64, f64)> {
     let dx = size / n as f64;
     (0..=n)
         .map(|i| {
@@ -87,9 +87,15 @@ fn top_profile(frame: &FieldFrame, n: usize, size: f64) -> Vec<(f64, f64, f64)> 
         .collect()
 }
 
-/// Hertz's numbers at the frame's force against the measured ones.
-fn measure(frame: &FieldFrame, n: usize, size: f64, e_star: f64) -> BTreeMap<String, f64> {
-    let profile = top_profile(frame, n, size);
+/// Hertz's numbers at the total of the contact `forces` on the nodes (N) against the
+/// measured ones.
+pub(super) fn measure(
+    forces: &[[f64; 2]],
+    n: usize,
+    size: f64,
+    e_star: f64,
+) -> BTreeMap<String, f64> {
+    let profile = top_profile(forces, n, size);
     // The half model carries half the load: P per unit width of the whole contact.
     let half: f64 = profile.iter().map(|p| p.1).sum();
     let p = 2.0 * half / WIDTH;
@@ -127,21 +133,53 @@ fn measure(frame: &FieldFrame, n: usize, size: f64, e_star: f64) -> BTreeMap<Str
     ])
 }
 
-pub fn hertz_line(p: &Params) -> Result<RunData, String> {
-    let (e, nu) = (
-        param(p, "youngs_modulus", 207e9)?,
-        param(p, "poisson_ratio", 0.3)?,
-    );
-    let model_modulus = param(p, "model_youngs_modulus", e)?;
-    let n = param(p, "n", 320.0)? as usize;
-    let size = param(p, "size", 0.04)?;
-    let text = scene(n, size, model_modulus, nu);
+/// The builtin's parameters: the block's `(E, nu)` (Pa, -), the solver's modulus (Pa; `E`
+/// unless a negative control sets it), `n` and the block's `size` (m).
+pub(super) struct Block {
+    pub(super) elastic: (f64, f64),
+    pub(super) model_modulus: f64,
+    pub(super) n: usize,
+    pub(super) size: f64,
+}
+
+impl Block {
+    pub(super) fn of(p: &Params) -> Result<Block, String> {
+        let elastic = (
+            param(p, "youngs_modulus", 207e9)?,
+            param(p, "poisson_ratio", 0.3)?,
+        );
+        Ok(Block {
+            elastic,
+            model_modulus: param(p, "model_youngs_modulus", elastic.0)?,
+            n: param(p, "n", 320.0)? as usize,
+            size: param(p, "size", 0.04)?,
+        })
+    }
+
+    /// `E* = E / (1 - nu^2)` of the block against a rigid cylinder, Pa.
+    pub(super) fn e_star(&self) -> f64 {
+        let (e, nu) = self.elastic;
+        e / (1.0 - nu * nu)
+    }
+}
+
+/// The block's scene run on the solver's time loop: the field frame of the largest contact
+/// force, and the run's outcome.
+pub(super) fn peak_run(block: &Block) -> Result<(FieldFrame, impact_solver::Outcome), String> {
+    let text = scene(block.n, block.size, block.model_modulus, block.elastic.1);
     let mut peak = PeakFrame::default();
     let o = run_scene_text(&text, "(builtin hertz-line)", &mut peak)?;
     let frame = peak
         .frame
         .ok_or("hertz-line: no field frame with contact")?;
-    let mut metrics = measure(&frame, n, size, e / (1.0 - nu * nu));
+    Ok((frame, o))
+}
+
+pub fn hertz_line(p: &Params) -> Result<RunData, String> {
+    let block = Block::of(p)?;
+    let (frame, o) = peak_run(&block)?;
+    let forces = frame.contact_force.as_deref().unwrap_or(&[]);
+    let mut metrics = measure(forces, block.n, block.size, block.e_star());
     metrics.insert("peak_time_s".into(), frame.time);
     metrics.insert("contact_duration_s".into(), o.summary.contact_duration);
     metrics.insert(

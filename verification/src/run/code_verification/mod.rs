@@ -13,6 +13,7 @@ pub mod driver;
 pub mod element_eigen;
 pub mod finite_path;
 pub mod hertz_line;
+pub mod hertz_line_problem;
 pub mod macneal_harder;
 pub mod manufactured;
 pub mod membrane;
