@@ -49,7 +49,7 @@ pub(super) struct Path {
     pub(super) youngs_modulus: f64,
     pub(super) poisson_ratio: f64,
     pub(super) yield_stress: f64,
-    pub(super) tangent_modulus: f64,
+    tangent_modulus: f64,
     density: f64,
     /// Largest axial strain (-)
     pub(super) eps_max: f64,
