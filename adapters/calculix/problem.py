@@ -10,7 +10,8 @@ a free one), the stress at every integration point and, with plasticity, its equ
 strain (`PEEQ`). ccx expands a `CPE4` into a one-layer `C3D8` with 8 points
 (`CPE4R`: 1), a `CAX4` into a 2-degree wedge (its radial displacement and forces below); the
 stresses are those points'. Lengths m, forces N (the section's whole width; none about the
-axis), stresses Pa (about the axis `s_rr, s_zz, s_tt, s_rz`, as ccx prints them).
+axis), stresses Pa (about the axis `s_rr, s_zz, s_tt, s_rz`, as ccx prints them). A `static
+contact` problem (a rigid cylinder pressed in) is written and read by indenter.py.
 """
 
 import json
