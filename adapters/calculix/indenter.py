@@ -62,11 +62,23 @@ def slab(p):
     return out
 
 
-def surface_faces(p):
-    """The slab's faces under the surface nodes: face S5 (nodes 3-7-8-4, the element's 2-D edge
-    from its third to its fourth node) of each element with both on the surface."""
+def surface_elements(p):
+    """The elements whose 2-D edge from their third to their fourth node lies on the surface."""
     on = set(p["indenter"]["surface_nodes"])
-    return [f"{k + 1}, S5" for k, e in enumerate(p["elements"]) if e[2] in on and e[3] in on]
+    return [k for k, e in enumerate(p["elements"]) if e[2] in on and e[3] in on]
+
+
+def surface_faces(p):
+    """The slab's faces under the surface nodes: face S5 (nodes 3-7-8-4) of each surface element."""
+    return [f"{k + 1}, S5" for k in surface_elements(p)]
+
+
+def depth_under_surface(p):
+    """The smallest depth of a surface element (its fourth node to its first), m: the penalty
+    slope's length."""
+    nodes = p["nodes_m"]
+    return min(math.dist(nodes[p["elements"][k][3]], nodes[p["elements"][k][0]])
+               for k in surface_elements(p))
 
 
 def arc(p):
@@ -75,7 +87,7 @@ def arc(p):
     ind = p["indenter"]
     r, (tx, _) = float(ind["radius_m"]), ind["touch_m"]
     xs = sorted(p["nodes_m"][n][0] for n in ind["surface_nodes"])
-    spacing = min(b - a for a, b in zip(xs, xs[1:]))
+    spacing = min(b - a for a, b in zip(xs, xs[1:]) if b > a)
     lo, hi = (math.asin(max(-1.0, min(1.0, (x - tx) / r))) for x in (xs[0], xs[-1]))
     segments = max(1, math.ceil((hi - lo) * r / (0.25 * spacing)))
     return [lo + (hi - lo) * k / segments for k in range(segments + 1)]
@@ -113,8 +125,7 @@ def deck_lines(p):
     check_expressible(p)
     count, ind = len(p["nodes_m"]), p["indenter"]
     m = p["material"]
-    rows = sorted({round(y, 12) for _, y in p["nodes_m"]})
-    dy = rows[-1] - rows[-2]
+    dy = depth_under_surface(p)
     lines = slab(p) + ["*SURFACE, NAME=SSLAB, TYPE=ELEMENT"] + surface_faces(p)
     ring_lines, ref = ring(p, 2 * count + 1, len(p["elements"]) + 1)
     lines += ring_lines
