@@ -103,7 +103,7 @@ def ring(p, first_node, first_element):
     out = ["*NODE, NSET=NRING"]
     for k, phi in enumerate(phis):
         for inner, rr in ((0, r), (1, r - thick)):
-            x, y = tx + rr * math.sin(phi), ty + (r - rr) + 2.0 * rr * math.sin(0.5 * phi) ** 2
+            x, y = nose.arc_point((tx, ty), r, rr, -phi)  # phi grows toward +x here
             out += [f"{node(k, inner, b)}, {deck.num(x)}, {deck.num(y)}, {deck.num(b * width)}"
                     for b in (0, 1)]
     ref = node(len(phis) - 1, 1, 1) + 1

@@ -83,11 +83,9 @@ class Nose:
         return self.first_node + (4 * k + 2 * inner + back)
 
     def point(self, phi, r):
-        """(x, y) of the circle of radius r about the centre at phi from the lowest point,
-        m: y = h + (R - r) + 2 r sin^2(phi / 2), written without R - R cos(phi) (a flat nose's
-        R is 1e6 m)."""
-        return (self.centre[0] - r * math.sin(phi),
-                self.top + (self.radius - r) + 2.0 * r * math.sin(0.5 * phi) ** 2)
+        """(x, y) of the circle of radius r about the centre at phi from the lowest point, m
+        (arc_point)."""
+        return arc_point((self.centre[0], self.top), self.radius, r, phi)
 
     def coordinates(self):
         """[(node number, x, y, z)] of the ring."""
@@ -114,6 +112,15 @@ class Nose:
         """(reference node, rotation node): after the ring's nodes."""
         last = self.node(len(self.angles()) - 1, 1, 1)
         return last + 1, last + 2
+
+
+def arc_point(touch, radius, r, phi):
+    """(x, y) of the circle of radius r about the centre of a cylinder of `radius` whose lowest
+    point is `touch` (x, y), at the angle phi from the lowest point toward -x, m:
+    y = y_touch + (R - r) + 2 r sin^2(phi / 2), written without R - R cos(phi) (a flat nose's R
+    is 1e6 m)."""
+    return (touch[0] - r * math.sin(phi),
+            touch[1] + (radius - r) + 2.0 * r * math.sin(0.5 * phi) ** 2)
 
 
 def slab_blocks(s, mesh, element_type):

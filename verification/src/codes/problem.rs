@@ -25,7 +25,7 @@ pub const AXISYMMETRIC: &str = "axisymmetric";
 /// one load step or a path of them.
 #[derive(Debug, Clone, Serialize)]
 pub struct Problem {
-    /// [`STATIC`] or [`STATIC_PATH`].
+    /// [`STATIC`], [`STATIC_PATH`] or [`STATIC_CONTACT`].
     pub problem: &'static str,
     /// [`PLANE_STRAIN`] or [`AXISYMMETRIC`]. In the axisymmetric geometry, `x` is the radius
     /// `r`, `y` the axial coordinate `z`, dof 0 radial, forces (loads and nodal forces) the
@@ -191,6 +191,13 @@ pub fn by_node(dofs: impl IntoIterator<Item = (usize, f64)>) -> Vec<(usize, usiz
     dofs.into_iter().map(|(d, v)| (d / 2, d % 2, v)).collect()
 }
 
+/// `(node, dof, value)` entries of the held dofs (`fixed_dofs[2 node + dof]`, as a plate mesh
+/// marks them), each prescribed to `value(global dof)`, m.
+pub fn held(fixed_dofs: &[bool], value: impl Fn(usize) -> f64) -> Vec<(usize, usize, f64)> {
+    let dofs = fixed_dofs.iter().enumerate().filter(|(_, fixed)| **fixed);
+    by_node(dofs.map(|(d, _)| (d, value(d))))
+}
+
 /// Isotropic linear elasticity, and plasticity when given.
 #[derive(Debug, Clone, Serialize)]
 pub struct ProblemMaterial {
@@ -264,11 +271,11 @@ impl Fields {
             }
         };
         for (k, f) in steps.iter().enumerate() {
-            let at = |e: String| match &problem.load_factors {
-                Some(_) => in_file(format!("steps[{k}]: {e}")),
-                None => in_file(e),
+            let step = match problem.load_factors {
+                Some(_) => format!("steps[{k}]: "),
+                None => String::new(),
             };
-            f.fit(problem).map_err(at)?;
+            f.fit(problem).map_err(|e| in_file(step + &e))?;
         }
         Ok(steps)
     }

@@ -16,7 +16,7 @@ use impact_solver::Scene;
 use serde_json::Value;
 
 use super::hertz_line::{measure, scene, Block, RADIUS, WIDTH};
-use crate::codes::problem::{by_node, Fields, Problem, ProblemIndenter};
+use crate::codes::problem::{held, Fields, Problem, ProblemIndenter};
 use crate::definition::run_data::RunData;
 use crate::run::builtin_params::param;
 
@@ -39,11 +39,15 @@ fn block_mesh(p: &Params) -> Result<(Block, PlateMesh, &'static str), String> {
 pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
     let (block, mesh, element) = block_mesh(p)?;
     let indentation = param(p, "indentation", 3.5e-5)?;
-    let held = (mesh.fixed_dofs.iter().enumerate())
-        .filter(|(_, fixed)| **fixed)
-        .map(|(d, _)| (d, 0.0));
     let modulus = (block.model_modulus, block.elastic.1);
-    let problem = Problem::plane_strain(element, WIDTH, modulus, &mesh.mesh, by_node(held), vec![]);
+    let problem = Problem::plane_strain(
+        element,
+        WIDTH,
+        modulus,
+        &mesh.mesh,
+        held(&mesh.fixed_dofs, |_| 0.0),
+        vec![],
+    );
     let indenter = ProblemIndenter {
         radius: RADIUS,
         touch: mesh.mesh.coords[mesh.top],

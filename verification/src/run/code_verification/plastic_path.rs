@@ -76,6 +76,10 @@ impl Path {
     pub(super) fn yield_strain(&self) -> f64 {
         self.yield_stress / (2.0 * self.lame().1)
     }
+    /// The time of step `n` of `steps` over the cycle, `n T / steps`, s.
+    pub(super) fn time(&self, n: usize, steps: usize) -> f64 {
+        n as f64 * (self.period / steps as f64)
+    }
     pub(super) fn strain(&self, t: f64) -> f64 {
         self.eps_max * (std::f64::consts::PI * t / self.period).sin()
     }
@@ -144,9 +148,10 @@ struct Run {
 impl Run {
     /// The rows of its steps ([`row`]).
     fn rows(&self, path: &Path) -> Vec<[f64; 6]> {
-        let dt = path.period / (self.fields.len() - 1) as f64;
+        let steps = self.fields.len() - 1;
         let rows = self.fields.iter().enumerate();
-        rows.map(|(n, f)| row(path, n as f64 * dt, f)).collect()
+        rows.map(|(n, f)| row(path, path.time(n, steps), f))
+            .collect()
     }
 }
 
@@ -189,18 +194,12 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
     let ndof = 2 * x.len();
     let mut u = vec![0.0; ndof];
     let mut v: Vec<f64> = (0..ndof)
-        .map(|d| {
-            if d % 2 == 0 {
-                path.strain_rate(0.0) * x[d / 2]
-            } else {
-                0.0
-            }
-        })
+        .map(|d| uniaxial(d, x[d / 2], path.strain_rate(0.0)))
         .collect();
     let mut f_int = vec![0.0; ndof];
     let mut fields = Vec::with_capacity(steps + 1);
     for n in 0..=steps {
-        let t = n as f64 * dt;
+        let t = path.time(n, steps);
         model.internal_forces(&u, &mut f_int);
         fields.push(step_fields(&model, &u, &f_int));
         if n == steps {
@@ -211,14 +210,10 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
         let half = if n == 0 { 0.5 } else { 1.0 };
         for d in 0..ndof {
             if mesh.fixed_dofs[d] {
-                u[d] = if d % 2 == 0 {
-                    path.strain(t_next) * x[d / 2]
-                } else {
-                    0.0
-                };
+                u[d] = uniaxial(d, x[d / 2], path.strain(t_next));
                 continue;
             }
-            let body = if d % 2 == 0 { acc * x[d / 2] } else { 0.0 };
+            let body = uniaxial(d, x[d / 2], acc);
             v[d] += half * dt * (body - f_int[d] * model.inverse_mass[d]);
             u[d] += dt * v[d];
         }
@@ -226,6 +221,17 @@ fn march<F: Formulation>(path: &Path, mesh: &PlateMesh, f: F, steps: usize) -> R
     Run {
         fields,
         dt_critical,
+    }
+}
+
+/// Component `d` (a global dof, `2 node + axis`) of the field `a x e_x` at a node of abscissa
+/// `x` (m): the homogeneous uniaxial field of the path, for `a` a strain, a strain rate or a
+/// strain acceleration.
+pub(super) fn uniaxial(d: usize, x: f64, a: f64) -> f64 {
+    if d % 2 == 0 {
+        a * x
+    } else {
+        0.0
     }
 }
 

@@ -17,38 +17,23 @@ use std::collections::BTreeMap;
 
 use serde_json::Value;
 
-use super::plastic_path::{path_run, row, setup};
+use super::plastic_path::{path_run, row, setup, uniaxial};
 use super::space_time::element;
-use crate::codes::problem::{by_node, Fields, Problem, ProblemPlasticity};
+use crate::codes::problem::{held, Fields, Problem, ProblemPlasticity};
 use crate::definition::run_data::RunData;
 
 type Params = BTreeMap<String, Value>;
-
-/// The cycle's times `t_n = n T / N`, s, `n = 1 .. N`.
-fn times(period: f64, steps: usize) -> impl Iterator<Item = f64> {
-    let dt = period / steps as f64;
-    (1..=steps).map(move |n| n as f64 * dt)
-}
 
 /// The path as one problem: the boundary's displacements at `eps_max`, scaled by each factor.
 pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
     let (path, mesh, levels) = setup(p)?;
     let steps = levels[levels.len() - 1];
     let coords = &mesh.mesh.coords;
-    let boundary = (mesh.fixed_dofs.iter().enumerate())
-        .filter(|(_, fixed)| **fixed)
-        .map(|(d, _)| {
-            (
-                d,
-                if d % 2 == 0 {
-                    path.eps_max * coords[d / 2][0]
-                } else {
-                    0.0
-                },
-            )
-        });
-    let factors = times(path.period, steps)
-        .map(|t| path.strain(t) / path.eps_max)
+    let boundary = held(&mesh.fixed_dofs, |d| {
+        uniaxial(d, coords[d / 2][0], path.eps_max)
+    });
+    let factors = (1..=steps)
+        .map(|n| path.strain(path.time(n, steps)) / path.eps_max)
         .collect();
     let plasticity = ProblemPlasticity {
         yield_stress: path.model.0,
@@ -59,7 +44,7 @@ pub fn problems(p: &Params) -> Result<Vec<(&'static str, Problem)>, String> {
         1.0,
         (path.youngs_modulus, path.poisson_ratio),
         &mesh.mesh,
-        by_node(boundary),
+        boundary,
         Vec::new(),
     );
     Ok(vec![("", problem.along_path(plasticity, factors))])
@@ -76,8 +61,8 @@ pub fn from_fields(p: &Params, fields: &[Fields]) -> Result<RunData, String> {
             fields.len()
         ));
     }
-    let rows: Vec<_> = (times(path.period, steps).zip(fields))
-        .map(|(t, f)| row(&path, t, f))
+    let rows: Vec<_> = (fields.iter().enumerate())
+        .map(|(k, f)| row(&path, path.time(k + 1, steps), f))
         .collect();
     let mut run = path_run(&path, &rows, BTreeMap::new());
     if fields.iter().any(|f| f.point_eqps.is_none()) {
