@@ -23,8 +23,8 @@
 //!   small-strain element's mean operators), one stress for the element, and the plane
 //!   element's hourglass forces on the total displacements (as in plane strain).
 
+use crate::lanes::cube_root::cube_root;
 use crate::lanes::real::{Real, THIRD};
-use crate::lanes::transcendental::pow;
 use crate::physics::elements::axisymmetric::Axisymmetric;
 use crate::physics::elements::element::{Energy, Formulation, FullQ4, OnePointQ4, SelectiveQ4};
 use crate::physics::elements::finite_element::{add_energy, point_update, FiniteResponse};
@@ -89,10 +89,10 @@ impl FiniteResponse for Axisymmetric<SelectiveQ4> {
         let mut inverses = [[zero; 4]; 4];
         for (p, batch) in batches.iter_mut().enumerate().take(4) {
             let w = ring.weight(p, at);
-            // The cube root as a power on the lanes (transcendental::pow, within 2 ulp of
-            // libm's cbrt here, where the ratio is near 1): libm's cbrt lane by lane took 10 %
-            // of a copper Taylor bar's run.
-            let alpha = pow(j_bar / j_p[p], THIRD);
+            // The cube root on the lanes, its ratio near 1 (lanes::cube_root: libm's cbrt
+            // lane by lane took 10 % of a copper Taylor bar's run, the power exp(ln(x) / 3)
+            // ... of the axisymmetric finite q4-sri kernel).
+            let alpha = cube_root(j_bar / j_p[p]);
             let g = &f_p[p];
             let g_bar = [
                 g[0] * alpha - 1.0,

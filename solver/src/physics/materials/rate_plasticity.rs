@@ -98,6 +98,24 @@ pub struct ViscoState {
     pub rate: f64,
     /// Temperature above the initial one, K.
     pub heating: f64,
+    /// The static flow stress at `plastic.eqps`, Pa, and the softening `1 - T*^m` at
+    /// `heating` (-), kept so that a point that does not flow computes neither again (each a
+    /// `pow` for Johnson-Cook); a static flow stress of 0 (the default) says not yet computed
+    /// ([`FlowCache`]).
+    pub cache: FlowCache<f64>,
+}
+
+/// A point's static flow stress (Pa) and softening (-), functions of its equivalent plastic
+/// strain and temperature rise that [`ViscoPlastic::update`] would otherwise compute at every
+/// step: written whenever either changes (and where unknown), so that the values read are
+/// the bits a computation would give. `static_flow` not above 0 means not yet computed (every
+/// state starts so; a curve whose flow stress is 0 computes it each step).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FlowCache<R> {
+    /// Pa
+    pub static_flow: R,
+    /// -
+    pub softening: R,
 }
 
 /// [`ViscoState`]s of one point of a batch of elements, in lanes.
@@ -108,6 +126,7 @@ pub struct ViscoBatch {
     pub rate: Lanes,
     /// K
     pub heating: Lanes,
+    pub cache: FlowCache<Lanes>,
 }
 
 /// Von Mises plasticity with a rate law.
@@ -122,6 +141,9 @@ pub struct ViscoPlastic {
     dt: f64,
     /// The instruction set the Newton solve is compiled for (the batched kernels').
     isa: Isa,
+    /// Whether the static flow stress and the softening cost a `pow` (a power curve, or
+    /// heating): then each point keeps them ([`FlowCache`]).
+    caches_flow: bool,
 }
 
 impl ViscoPlastic {
@@ -144,6 +166,7 @@ impl ViscoPlastic {
                 spec.youngs_modulus,
             )?),
         };
+        let caches_flow = matches!(curve, StaticCurve::Power { .. }) || law.thermal().is_some();
         Some(ViscoPlastic {
             elastic: Elastic::new(spec.youngs_modulus, spec.poisson_ratio),
             curve,
@@ -153,7 +176,47 @@ impl ViscoPlastic {
             law,
             dt: f64::NAN,
             isa: Isa::Baseline,
+            caches_flow,
         })
+    }
+
+    /// The static flow stress and softening at `k` and `heating` (K).
+    #[inline(always)]
+    fn flow_at<R: Real>(&self, k: R, heating: R) -> FlowCache<R> {
+        FlowCache {
+            static_flow: self.curve.stress(k),
+            softening: self.softening(heating),
+        }
+    }
+
+    /// [`ViscoPlastic::flow_at`] the point's `k` and `heating` before the step: from `cache`
+    /// when every lane has it, else computed and kept for every lane (a function of the
+    /// state, so also where the step writes no state). [`ConstitutiveModel::update`] writes it
+    /// again where `k` or the heating moved.
+    #[inline(always)]
+    fn flow_before<R: Real>(
+        &self,
+        cache: &mut FlowCache<Lanes>,
+        at: usize,
+        k: R,
+        heating: R,
+    ) -> FlowCache<R> {
+        if !self.caches_flow {
+            return self.flow_at(k, heating);
+        }
+        let zero = R::splat(0.0);
+        let static_flow = R::of_batch(&cache.static_flow, at);
+        if !R::any(R::not(static_flow.gt(zero))) {
+            return FlowCache {
+                static_flow,
+                softening: R::of_batch(&cache.softening, at),
+            };
+        }
+        let known = self.flow_at(k, heating);
+        let every = R::not(zero.gt(zero));
+        R::store(&mut cache.static_flow, at, known.static_flow, every);
+        R::store(&mut cache.softening, at, known.softening, every);
+        known
     }
 
     /// Johnson-Cook's `1 - T*^m` per lane of the temperature rise `heating` (K) above the
@@ -510,6 +573,8 @@ pub fn solve_decreasing<R: Real>(
 /// The flow law the radial return asks, at one point's temperature.
 struct RateFlow<'a, R> {
     model: &'a ViscoPlastic,
+    /// The static flow stress at the point's equivalent plastic strain before the step, Pa.
+    static_flow: R,
     /// `1 - T*^m` per lane.
     softening: R,
     /// The last step's plastic strain rate times this step (-): where Newton starts.
@@ -517,10 +582,11 @@ struct RateFlow<'a, R> {
 }
 
 impl<R: Real> FlowLaw<R> for RateFlow<'_, R> {
-    /// The static flow stress at the point's temperature: flow starts above it.
+    /// The static flow stress at the point's temperature: flow starts above it. Asked at the
+    /// point's `k` before the step only (by [`radial_return`]), whose value `static_flow` holds.
     #[inline(always)]
-    fn flow_stress(&self, k: R) -> R {
-        self.model.curve.stress(k) * self.softening
+    fn flow_stress(&self, _k: R) -> R {
+        self.static_flow * self.softening
     }
     #[inline(always)]
     fn plastic_increment(&self, q: R, k: R, flow_at_k: R, three_mu: f64) -> R {
@@ -583,6 +649,10 @@ impl ConstitutiveModel for ViscoPlastic {
             plastic: VonMises::state_of(&batch.plastic, l),
             rate: batch.rate.0[l],
             heating: batch.heating.0[l],
+            cache: FlowCache {
+                static_flow: batch.cache.static_flow.0[l],
+                softening: batch.cache.softening.0[l],
+            },
         }
     }
 
@@ -590,6 +660,8 @@ impl ConstitutiveModel for ViscoPlastic {
         VonMises::set_state(&mut batch.plastic, l, state.plastic);
         batch.rate.0[l] = state.rate;
         batch.heating.0[l] = state.heating;
+        batch.cache.static_flow.0[l] = state.cache.static_flow;
+        batch.cache.softening.0[l] = state.cache.softening;
     }
 
     /// The radial return with [`RateFlow`], then the step's rate and heating.
@@ -603,9 +675,11 @@ impl ConstitutiveModel for ViscoPlastic {
     ) -> Response<R> {
         let heating = R::of_batch(&batch.heating, at);
         let k_old = R::of_batch(&batch.plastic.eqps, at);
+        let known = self.flow_before(&mut batch.cache, at, k_old, heating);
         let flow = RateFlow {
             model: self,
-            softening: self.softening(heating),
+            static_flow: known.static_flow,
+            softening: known.softening,
             last_increment: R::of_batch(&batch.rate, at) * self.dt,
         };
         let r = radial_return(
@@ -622,9 +696,23 @@ impl ConstitutiveModel for ViscoPlastic {
             (k_new - k_old) * (1.0 / self.dt),
             active,
         );
+        let mut heating_after = heating;
         if self.heating_per_work > 0.0 {
-            let rise = heating + r.plastic_work_density * self.heating_per_work;
-            R::store(&mut batch.heating, at, rise, active);
+            heating_after = heating + r.plastic_work_density * self.heating_per_work;
+            R::store(&mut batch.heating, at, heating_after, active);
+        }
+        if self.caches_flow {
+            // k or the heating moved (a lane may flow with no work at a melted point).
+            let still = R::and(
+                R::not(k_new.gt(k_old)),
+                R::not(r.plastic_work_density.gt(R::splat(0.0))),
+            );
+            let flowed = R::and(active, R::not(still));
+            if R::any(flowed) {
+                let after = self.flow_at(k_new, heating_after);
+                R::store(&mut batch.cache.static_flow, at, after.static_flow, active);
+                R::store(&mut batch.cache.softening, at, after.softening, active);
+            }
         }
         r
     }
@@ -818,6 +906,62 @@ mod tests {
         );
         assert!(state.heating > 1.0, "{}", state.heating);
         assert_relative_eq!(m.temperature(&state).unwrap(), 293.15 + state.heating);
+    }
+
+    /// The kept static flow stress and softening ([`FlowCache`]) give the bits of computing
+    /// them at every step: a Johnson-Cook point with heating is loaded, unloaded into reversed
+    /// flow, held, and reloaded (flowing, elastic and flowing again, hot), once with the state
+    /// as the model leaves it and once with its cache cleared before every step; every
+    /// response and state (the cache aside) are equal to the bit. Fails for a cache not
+    /// written after a step that flows (the point then flows on from its first flow stress:
+    /// tried, the responses differ from step 22 on, the second step past yield).
+    #[test]
+    fn the_kept_flow_stress_is_the_computed_one() {
+        let thermal = Thermal {
+            initial_temperature: 293.15,
+            reference_temperature: 293.15,
+            melting_temperature: 1793.0,
+            specific_heat: 473.0,
+            taylor_quinney: 0.9,
+            softening_exponent: 1.1,
+        };
+        let law = RateLaw::JohnsonCook {
+            c: 0.0089,
+            reference_rate: 1.0,
+            thermal: Some(thermal),
+        };
+        let power = Hardening::Power {
+            coefficient: 614e6,
+            exponent: 0.168,
+        };
+        let m = steel(power, 806e6, law, 1e-6);
+        // Strain (-): up to 1.2e-2 (three times the yield strain), down to -1.2e-2, held,
+        // then up to 2e-2.
+        let path = |i: usize| -> f64 {
+            match i {
+                0..=60 => 2e-4 * i as f64,
+                61..=120 => 1.2e-2 - 4e-4 * (i - 60) as f64,
+                121..=140 => -1.2e-2,
+                _ => -1.2e-2 + 4e-4 * (i - 140) as f64,
+            }
+        };
+        let (mut kept, mut cleared) = (ViscoState::default(), ViscoState::default());
+        let mut flowed = 0;
+        for i in 1..=220 {
+            let strain = [path(i), -0.3 * path(i), 0.0, 0.5 * path(i)];
+            let a = update(&m, &strain, &mut kept);
+            cleared.cache = FlowCache::default();
+            let b = update(&m, &strain, &mut cleared);
+            assert_eq!(a, b, "step {i}");
+            let without_cache = |s: &ViscoState| ViscoState {
+                cache: FlowCache::default(),
+                ..*s
+            };
+            assert_eq!(without_cache(&kept), without_cache(&cleared), "step {i}");
+            flowed += usize::from(a.plastic_work_density > 0.0);
+        }
+        // The path flows, unloads and flows again (a path that never flows tests nothing).
+        assert!(flowed > 60 && kept.heating > 0.0, "{flowed} {kept:?}");
     }
 
     /// A preheated point (60 K above the reference temperature, `T*_0 = 60 / 150 = 0.4`,
