@@ -9,6 +9,7 @@ const ELASTIC: &str = include_str!("../../verification/scenes/paper-elastic.yaml
 const PLASTIC: &str = include_str!("../../verification/scenes/paper-plastic.yaml");
 const PULSE: &str = include_str!("../../verification/scenes/paper-pulse-elastic.yaml");
 const TAYLOR: &str = include_str!("../../verification/scenes/taylor-bar-kamoulakos.yaml");
+const TAYLOR_42CRMO4: &str = include_str!("../../verification/scenes/taylor-bar-42crmo4.yaml");
 
 /// A scene of the paper's case on the reconstructed plate, without field output and with a
 /// history row every 1e-5 s (as `reference-data/independent/scenes/table1-*.yaml`).
@@ -40,6 +41,14 @@ pub fn taylor_bar(every_step: bool) -> Scene {
         s.time.dt_update = impact_solver::scene::DtUpdate::EveryStep;
     }
     s
+}
+
+/// DynELA's Johnson-Cook Taylor bar of 42CrMo4 (verification/scenes/taylor-bar-42crmo4.yaml:
+/// axisymmetric 5 x 50 q4-sri, finite deformation, heating, 287 m/s, 80 us, the step
+/// re-estimated every step at cfl 0.8), as the scene file has it.
+pub fn taylor_bar_42crmo4() -> Scene {
+    Scene::from_yaml(TAYLOR_42CRMO4, Path::new("taylor-bar-42crmo4.yaml"))
+        .expect("the 42CrMo4 Taylor bar scene is valid")
 }
 
 /// The paper's verification load on the elastic reconstructed plate: 86.5 kN rectangular

@@ -190,14 +190,14 @@ impl ViscoPlastic {
     }
 
     /// [`ViscoPlastic::flow_at`] the point's `k` and `heating` before the step: from `cache`
-    /// when every lane has it, else computed and kept for every lane (a function of the
-    /// state, so also where the step writes no state). [`ConstitutiveModel::update`] writes it
+    /// when every lane has it, else computed, and kept where `active` (the lanes whose state
+    /// the step writes, as the scalar path does). [`ConstitutiveModel::update`] writes it
     /// again where `k` or the heating moved.
     #[inline(always)]
     fn flow_before<R: Real>(
         &self,
         cache: &mut FlowCache<Lanes>,
-        at: usize,
+        (at, active): (usize, R::Mask),
         k: R,
         heating: R,
     ) -> FlowCache<R> {
@@ -213,9 +213,8 @@ impl ViscoPlastic {
             };
         }
         let known = self.flow_at(k, heating);
-        let every = R::not(zero.gt(zero));
-        R::store(&mut cache.static_flow, at, known.static_flow, every);
-        R::store(&mut cache.softening, at, known.softening, every);
+        R::store(&mut cache.static_flow, at, known.static_flow, active);
+        R::store(&mut cache.softening, at, known.softening, active);
         known
     }
 
@@ -675,7 +674,7 @@ impl ConstitutiveModel for ViscoPlastic {
     ) -> Response<R> {
         let heating = R::of_batch(&batch.heating, at);
         let k_old = R::of_batch(&batch.plastic.eqps, at);
-        let known = self.flow_before(&mut batch.cache, at, k_old, heating);
+        let known = self.flow_before(&mut batch.cache, (at, active), k_old, heating);
         let flow = RateFlow {
             model: self,
             static_flow: known.static_flow,
