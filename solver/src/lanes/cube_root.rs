@@ -50,30 +50,18 @@ mod tests {
     //! densely, and at its ends and their neighbours; measured 5, the roundings of `x z^3` and
     //! of the two products after the steps), `pow`'s bound outside it, the edges (0, `inf`,
     //! NaN, below 0) as `pow`'s; the lanes bit for bit the scalar path, with lanes inside and
-    //! outside the interval in one vector. Wrong models each fails (tried): a Newton step too
+    //! outside the interval in one vector (`lanes::accuracy`, as `transcendental`'s tests). Wrong models each fails (tried): a Newton step too
     //! few, a sign slip in the cubic Taylor coefficient (819 ulp), the fallback not taken
     //! outside the interval (the steps diverge).
     use super::*;
-    use crate::lanes::simd::{Lanes, LANES};
+    use crate::lanes::accuracy::worst;
 
-    fn ulps(a: f64, b: f64) -> u64 {
-        (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs()
-    }
+    /// Measured 5: the roundings of `x z^3` and of the two products after the steps.
+    const NEAR_ONE_ULP: f64 = 10.0;
 
-    /// Largest ulp distance from libm over `xs`, the lanes checked against the scalar path.
-    fn worst(xs: &[f64]) -> u64 {
-        let mut worst = 0;
-        for chunk in xs.chunks(LANES) {
-            let mut lanes = Lanes::splat(1.0);
-            lanes.0[..chunk.len()].copy_from_slice(chunk);
-            let batched = cube_root(lanes);
-            for (l, &x) in chunk.iter().enumerate() {
-                let one = cube_root(x);
-                assert_eq!(batched.0[l].to_bits(), one.to_bits(), "lane {l} at {x:e}");
-                worst = worst.max(ulps(one, x.cbrt()));
-            }
-        }
-        worst
+    /// pow(x, 1/3)'s bound, `2 + 2 |ln x| / 3` ulp (`transcendental`'s module documentation).
+    fn pow_bound(x: f64) -> f64 {
+        2.0 + 2.0 * (x.ln() / 3.0).abs()
     }
 
     #[test]
@@ -88,9 +76,10 @@ mod tests {
                 f64::from_bits(edge.to_bits() - 1),
             ]);
         }
-        let w = worst(&xs);
+        let w = worst(&xs, cube_root, cube_root::<f64>, f64::cbrt, |_| {
+            NEAR_ONE_ULP
+        });
         println!("cube_root: at most {w} ulp from libm on [3/4, 4/3]");
-        assert!(w <= 10, "{w} ulp");
     }
 
     #[test]
@@ -106,12 +95,9 @@ mod tests {
             })
             .chain([10.0, 0.5, 1e300, 5e-324])
             .collect();
-        // pow(x, 1/3)'s bound: 2 + 2 |ln x| / 3 ulp (transcendental's module documentation).
-        let w = worst(&xs);
-        assert!(
-            w as f64 <= 2.0 + 2.0 * (5e-324f64.ln() / 3.0).abs(),
-            "{w} ulp"
-        );
+        let near = |x: f64| (LOW..=HIGH).contains(&x);
+        let bound = |x: f64| if near(x) { NEAR_ONE_ULP } else { pow_bound(x) };
+        worst(&xs, cube_root, cube_root::<f64>, f64::cbrt, bound);
         for x in [10.0, 0.5, 1e-3, 27.0] {
             assert_eq!(cube_root(x), pow(x, THIRD), "{x}");
         }

@@ -3,6 +3,8 @@
 //! ([`simd`]); `ln`, `exp` and `pow` written once for both ([`transcendental`]), and the cube
 //! root of a ratio near 1 ([`cube_root`]); and the heap the model's arrays hold ([`heap`]).
 
+#[cfg(test)]
+mod accuracy;
 pub mod cube_root;
 pub mod heap;
 pub mod real;

@@ -89,9 +89,9 @@ impl FiniteResponse for Axisymmetric<SelectiveQ4> {
         let mut inverses = [[zero; 4]; 4];
         for (p, batch) in batches.iter_mut().enumerate().take(4) {
             let w = ring.weight(p, at);
-            // The cube root on the lanes, its ratio near 1 (lanes::cube_root: libm's cbrt
-            // lane by lane took 10 % of a copper Taylor bar's run, the power exp(ln(x) / 3)
-            // ... of the axisymmetric finite q4-sri kernel).
+            // The cube root on the lanes, its ratio near 1 (lanes::cube_root): libm's cbrt
+            // lane by lane took 10 % of a copper Taylor bar's run; the power exp(ln(x) / 3)
+            // on the lanes made the axisymmetric finite q4-sri kernel 122 ns against 109 ns.
             let alpha = cube_root(j_bar / j_p[p]);
             let g = &f_p[p];
             let g_bar = [

@@ -772,6 +772,7 @@ mod tests {
     //! constant-rate uniaxial strain (Cowper-Symonds and Johnson-Cook), the work identity, the
     //! Newton iteration's quadratic convergence, and the scalar path's bits in lanes.
     use super::*;
+    use crate::input::rate_law::johnson_cook_42crmo4;
     use crate::input::scene::Plasticity;
     use crate::input::scene::{RateLaw, Thermal};
     use approx::assert_relative_eq;
@@ -849,6 +850,18 @@ mod tests {
         }
     }
 
+    /// DynELA's 42CrMo4 with heating ([`johnson_cook_42crmo4`]: A = 806 MPa, B = 614 MPa,
+    /// n = 0.168, C = 0.0089 at 1 1/s, Taylor-Quinney 0.9, c = 460 J/(kg K), m = 1.1), in
+    /// [`steel`] (7850 kg/m^3), at the step `dt` (s).
+    fn heated_steel(dt: f64) -> ViscoPlastic {
+        let ((a, b, n), law) = johnson_cook_42crmo4();
+        let power = Hardening::Power {
+            coefficient: b,
+            exponent: n,
+        };
+        steel(power, a, law, dt)
+    }
+
     #[test]
     fn johnson_cook_reaches_its_steady_flow_stress_and_heats() {
         let (a, b, n, c, rate0) = (806e6, 614e6, 0.168, 0.0089, 1.0);
@@ -877,21 +890,8 @@ mod tests {
             assert!(gap.abs() < 1e-3, "work identity {gap}");
         }
         // Heating: the temperature rise is beta / (rho c) times the plastic work density.
-        let thermal = Thermal {
-            initial_temperature: 293.15,
-            reference_temperature: 293.15,
-            melting_temperature: 1813.15,
-            specific_heat: 473.0,
-            taylor_quinney: 0.9,
-            softening_exponent: 1.1,
-        };
-        let law = RateLaw::JohnsonCook {
-            c,
-            reference_rate: rate0,
-            thermal: Some(thermal),
-        };
         let dt = 2e-6;
-        let m = steel(power, a, law, dt);
+        let m = heated_steel(dt);
         let mut state = ViscoState::default();
         let mut work = 0.0;
         for i in 1..=250 {
@@ -900,7 +900,7 @@ mod tests {
         }
         assert_relative_eq!(
             state.heating,
-            0.9 * work / (7850.0 * 473.0),
+            0.9 * work / (7850.0 * 460.0),
             max_relative = 1e-12
         );
         assert!(state.heating > 1.0, "{}", state.heating);
@@ -916,24 +916,7 @@ mod tests {
     /// tried, the responses differ from step 22 on, the second step past yield).
     #[test]
     fn the_kept_flow_stress_is_the_computed_one() {
-        let thermal = Thermal {
-            initial_temperature: 293.15,
-            reference_temperature: 293.15,
-            melting_temperature: 1793.0,
-            specific_heat: 473.0,
-            taylor_quinney: 0.9,
-            softening_exponent: 1.1,
-        };
-        let law = RateLaw::JohnsonCook {
-            c: 0.0089,
-            reference_rate: 1.0,
-            thermal: Some(thermal),
-        };
-        let power = Hardening::Power {
-            coefficient: 614e6,
-            exponent: 0.168,
-        };
-        let m = steel(power, 806e6, law, 1e-6);
+        let m = heated_steel(1e-6);
         // Strain (-): up to 1.2e-2 (three times the yield strain), down to -1.2e-2, held,
         // then up to 2e-2.
         let path = |i: usize| -> f64 {
